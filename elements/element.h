@@ -1,0 +1,55 @@
+// Force elements: read marker motion, return loads on the markers.
+//
+// An element with k markers returns one MarkerLoad per marker and, for the
+// Jacobian, the 6k x 12k matrix D = d(loads)/d(motion) where the loads of
+// marker i are rows [6i, 6i+6) = (F, M) and the motion of marker j columns
+// [12j, 12j+12) = (p, v, psi, w). Elements supply D analytically; the base
+// class offers a central finite-difference version used as fallback and as the
+// reference in tests.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "solver/marker.h"
+
+namespace evas {
+
+struct Channel {
+  std::string name;  ///< e.g. "force_x"
+  std::string unit;  ///< e.g. "N"
+};
+
+class Element {
+ public:
+  virtual ~Element() = default;
+
+  const std::string& name() const { return name_; }
+  virtual std::string type() const = 0;
+  /// Indices of the markers this element attaches to (into the model's marker list).
+  const std::vector<int>& markers() const { return markers_; }
+
+  /// Loads on the markers (size k) at time t.
+  virtual void evaluate(double t, const MarkerMotion* motion, MarkerLoad* loads) const = 0;
+  /// D = d(loads)/d(motion), 6k x 12k, preallocated by the caller.
+  virtual void derivatives(double t, const MarkerMotion* motion, Mat& D) const;
+  /// True if the loads depend on marker motion (false: explicit in time).
+  virtual bool state_dependent() const { return true; }
+
+  /// Output channels and their values at the given motion.
+  virtual std::vector<Channel> channels() const = 0;
+  virtual void channel_values(double t, const MarkerMotion* motion, double* out) const = 0;
+
+  /// Finite-difference D (central differences, step scaled by the motion).
+  void derivatives_fd(double t, const MarkerMotion* motion, Mat& D) const;
+
+ protected:
+  Element(std::string name, std::vector<int> markers)
+      : name_(std::move(name)), markers_(std::move(markers)) {}
+
+ private:
+  std::string name_;
+  std::vector<int> markers_;
+};
+
+}  // namespace evas

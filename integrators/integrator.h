@@ -1,0 +1,81 @@
+// Integrators behind one interface, chosen by name:
+//   ida                  IDA (variable-order BDF) on the implicit residual, KLU or dense LU
+//   cvode                CVODE on the explicit form: BDF + Newton + KLU/dense, or Adams
+//   generalized-alpha    Chung-Hulbert with Newton on the second-order form, fixed step
+//   linear-acceleration  the paper's method: Newmark beta = 1/6, gamma = 1/2, fixed step,
+//                        fixed-point iteration on the element loads until the balance
+//                        error of Eq. 1 is <= balance_tol
+// All see the model only through Problem (solver/problem.h).
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "solver/problem.h"
+
+namespace evas {
+
+struct IntegratorSettings {
+  std::string name = "ida";
+  double rtol = 1e-6;
+  double atol = 1e-8;
+  double step = 1e-4;                 ///< fixed step (generalized-alpha, linear-acceleration) [s]
+  double max_step = 0.0;              ///< adaptive methods: 0 = no limit [s]
+  std::string linear_solver = "klu";  ///< ida, cvode: "klu" or "dense"
+  std::string method = "bdf";         ///< cvode: "bdf" or "adams"
+  double rho_inf = 0.8;               ///< generalized-alpha spectral radius at infinity, [0, 1]
+  double balance_tol = 1e-3;          ///< linear-acceleration: balance error tolerance (0.1 %)
+  int max_iterations = 50;            ///< fixed-point / Newton iterations per step
+  long max_steps = 10000000;          ///< adaptive methods: steps per output interval
+};
+
+/// Statistics every run reports.
+struct IntegratorStats {
+  long steps = 0;
+  long residual_evals = 0;  ///< f (or F) evaluations, including those for finite differences
+  long jacobian_evals = 0;
+  long linear_setups = 0;  ///< factorizations
+  long linear_solves = 0;
+  long nonlinear_iterations = 0;
+  long error_test_failures = 0;
+  long convergence_failures = 0;
+  long restarts = 0;  ///< re-initializations at stops that changed the state
+  double wall_seconds = 0.0;
+  double last_step = 0.0;
+  double min_step = 0.0, max_step = 0.0;
+  int last_order = 0;
+};
+
+class Integrator {
+ public:
+  virtual ~Integrator() = default;
+  virtual std::string name() const = 0;
+  /// Prepare to integrate from t0 with q0, v0 (size n each).
+  virtual void init(Problem& p, double t0, const Vec& q0, const Vec& v0,
+                    const IntegratorSettings& s) = 0;
+  /// Advance to tout (> current time) and return the state there. When `land`
+  /// is true the integrator must step exactly onto tout (a stop: the model may
+  /// change the state there); otherwise it may interpolate (dense output).
+  virtual void advance(double tout, bool land, Vec& q, Vec& v) = 0;
+  /// Restart from a changed state at the current time (after Problem::at_stop).
+  virtual void restart(double t, const Vec& q, const Vec& v) = 0;
+  virtual IntegratorStats stats() const = 0;
+};
+
+/// Names accepted by make_integrator.
+std::vector<std::string> integrator_names();
+/// Throws InputError naming the integrator when unknown.
+std::unique_ptr<Integrator> make_integrator(const std::string& name);
+
+/// Integrate from t0 to the given output times (ascending, > t0), honouring the
+/// problem's stops, calling sink(t, q, v) at every output time. Statistics are
+/// accumulated in `stats` (wall time included). Throws RunError on failure with
+/// time and state described by the problem.
+template <class Sink>
+void integrate(Integrator& integ, Problem& p, double t0, const std::vector<double>& outputs,
+               Sink&& sink);
+
+}  // namespace evas
+
+#include "integrators/integrate_impl.h"

@@ -1,0 +1,26 @@
+// Modal-body builder: from sparse stiffness and mass plus node coordinates to a
+// ModalBody with an explicit mass-orthonormal rigid basis (formulation.md s. 2).
+//
+// Lowest modes by dense Eigen (small models) or Spectra shift-invert (large,
+// sparse); the rigid modes the eigen-solver returns (arbitrary mixtures, |lambda|
+// ~ 0) are replaced by rigid_basis(), the elastic modes are re-orthogonalised
+// against it and each other in the mass inner product, then truncated by count
+// and/or frequency cut-off.
+#pragma once
+
+#include "solver/modal_body.h"
+#include "solver/truss.h"
+
+namespace evas {
+
+struct BuildOptions {
+  int num_elastic = 0;          ///< keep at most this many elastic modes (0 = no count limit)
+  double max_frequency = 0.0;   ///< keep elastic modes below this [Hz] (0 = no cut-off)
+  bool keep_rigid = true;       ///< include the 6 rigid modes first
+  double damping_ratio = 0.0;   ///< modal damping ratio for elastic modes
+  std::string solver = "auto";  ///< "dense", "spectra" or "auto" (dense below 3000 DOF)
+};
+
+ModalBody build_modal_body(const std::string& name, const FeModel& fe, const BuildOptions& opt);
+
+}  // namespace evas

@@ -1,0 +1,42 @@
+// First-order views of a second-order Problem, with y = [q; v] (2n):
+//   implicit residual (IDA):  F(t, y, yd) = [ yd_q - v ; yd_v + f(t, q, v) ]
+//       iteration matrix      J = dF/dy + cj dF/dyd = [ cj I , -I ; K , C + cj I ]
+//   explicit form (CVODE):    yd = g(t, y) = [ v ; -f(t, q, v) ]
+//       Jacobian              dg/dy = [ 0 , I ; -K , -C ]
+// Both matrices have patterns fixed at construction (CSC, int indices);
+// filling them allocates nothing.
+#pragma once
+
+#include <vector>
+
+#include "solver/problem.h"
+
+namespace evas {
+
+class FirstOrderForm {
+ public:
+  explicit FirstOrderForm(Problem& p);
+
+  Problem& problem() { return p_; }
+  int size() const { return 2 * n_; }
+
+  void residual(double t, const double* y, const double* yd, double* F);
+  void residual_jacobian(double t, const double* y, double cj, SpMat& J);
+  const SpMat& residual_pattern() const { return Jres_; }
+
+  void rhs(double t, const double* y, double* yd);
+  void rhs_jacobian(double t, const double* y, SpMat& J);
+  const SpMat& rhs_pattern() const { return Jrhs_; }
+
+ private:
+  Problem& p_;
+  int n_;
+  SpMat K_, C_;
+  SpMat Jres_, Jrhs_;
+  // value positions in Jres_/Jrhs_ of: the K and C entries (by K_'s value index),
+  // the cj diagonal entries, and the +-I entries.
+  std::vector<int> res_K_, res_C_, res_cjq_, res_cjv_, res_I_;
+  std::vector<int> rhs_K_, rhs_C_, rhs_I_;
+};
+
+}  // namespace evas

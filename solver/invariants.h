@@ -1,0 +1,40 @@
+// Modal invariants of a body (formulation.md section 2), computed once so that
+// one evaluation of Eq. 1 costs O(n^2) per body whatever the node count.
+//
+//   S    (3 x n)   row a: 1^T M_s Phi_a
+//   p_ab (n)       Phi_a^T M_s s_b
+//   M_ab (n x n)   Phi_a^T M_s Phi_b
+#pragma once
+
+#include <array>
+
+#include "solver/modal_body.h"
+
+namespace evas {
+
+struct ModalInvariants {
+  Mat S;                                ///< 3 x n
+  std::array<std::array<Vec, 3>, 3> p;  ///< p[a][b], n each
+  std::array<std::array<Mat, 3>, 3> M;  ///< M[a][b], n x n each
+};
+
+ModalInvariants compute_invariants(const ModalBody& body);
+
+/// The frame-dependent terms of Eq. 1 for one body at given LOF kinematics
+/// (all in L components): accel a_L (including -g), angular velocity w_L and
+/// angular acceleration al_L. Writes
+///   f0 = S^T a_L + sum_ab W_ab p_ab,   KW = sum_ab W_ab M_ab,   G = 2 sum_ab Omega_ab M_ab
+/// with W = skew(al_L) + skew(w_L)^2 and Omega = skew(w_L). Allocation-free
+/// when the outputs already have their sizes.
+void frame_terms(const ModalInvariants& inv, const Vec3& a_L, const Vec3& w_L, const Vec3& al_L,
+                 Vec& f0, Mat& KW, Mat& G);
+
+/// Eq. 1 evaluated literally with sums over the nodes (lumped masses only), as
+/// the paper writes it. Returns the left side minus the modal forces:
+///   qdd + sum_i m_i Phi_i^T A^T a + ... + Lambda q + C qd - sum_i Phi_i^T A^T F_i.
+/// For verification and benchmarks only: O(N n) per call.
+Vec eq1_literal(const ModalBody& body, const Mat3& A, const Vec3& a_G, const Vec3& w_G,
+                const Vec3& al_G, const Vec& q, const Vec& qd, const Vec& qdd,
+                const Eigen::Matrix<double, Eigen::Dynamic, 3>& F_G);
+
+}  // namespace evas

@@ -1,0 +1,99 @@
+#include "solver/marker.h"
+
+#include <cmath>
+
+namespace evas {
+
+Marker make_node_marker(const std::string& name, int body, const ModalBody& b, long node_id) {
+  Marker m;
+  m.name = name;
+  m.body = body;
+  const int i = b.node_index(node_id);
+  m.c = b.s.row(i).transpose();
+  m.Bu = b.modes.middleRows(3 * i, 3);
+  m.Bt = Mat3X::Zero(3, b.num_modes());
+  m.has_rotation = false;
+  return m;
+}
+
+Marker make_set_marker(const std::string& name, int body, const ModalBody& b,
+                       const std::vector<long>& node_ids, const std::vector<double>& weights,
+                       const Vec3* centre) {
+  if (node_ids.empty()) throw InputError("marker '" + name + "': empty node set");
+  if (!weights.empty() && weights.size() != node_ids.size())
+    throw InputError("marker '" + name + "': " + std::to_string(weights.size()) + " weights for " +
+                     std::to_string(node_ids.size()) + " nodes");
+  const int n = b.num_modes();
+  std::vector<int> idx;
+  std::vector<double> w;
+  double wsum = 0.0;
+  Vec3 centroid = Vec3::Zero();
+  for (std::size_t k = 0; k < node_ids.size(); ++k) {
+    idx.push_back(b.node_index(node_ids[k]));
+    w.push_back(weights.empty() ? 1.0 : weights[k]);
+    if (!(w.back() >= 0.0)) throw InputError("marker '" + name + "': negative weight");
+    wsum += w.back();
+    centroid += w.back() * b.s.row(idx.back()).transpose();
+  }
+  if (!(wsum > 0.0)) throw InputError("marker '" + name + "': weights sum to zero");
+  Marker m;
+  m.name = name;
+  m.body = body;
+  m.c = centre ? *centre : Vec3(centroid / wsum);
+  m.Bu = Mat3X::Zero(3, n);
+  for (std::size_t k = 0; k < idx.size(); ++k)
+    m.Bu += (w[k] / wsum) * b.modes.middleRows(3 * idx[k], 3);
+  // Least-squares small rotation about c: theta = J^+ sum w d x (u_i - u_m).
+  Mat3 J = Mat3::Zero();
+  Mat3X T = Mat3X::Zero(3, n);
+  for (std::size_t k = 0; k < idx.size(); ++k) {
+    const Vec3 d = b.s.row(idx[k]).transpose() - m.c;
+    J += w[k] * (d.squaredNorm() * Mat3::Identity() - d * d.transpose());
+    T += w[k] * skew(d) * (b.modes.middleRows(3 * idx[k], 3) - m.Bu);
+  }
+  Eigen::SelfAdjointEigenSolver<Mat3> es(J);
+  const double lmax = es.eigenvalues().maxCoeff();
+  Mat3 Jinv = Mat3::Zero();
+  int rank = 0;
+  for (int k = 0; k < 3; ++k)
+    if (lmax > 0.0 && es.eigenvalues()[k] > 1e-10 * lmax) {
+      Jinv += es.eigenvectors().col(k) * es.eigenvectors().col(k).transpose() / es.eigenvalues()[k];
+      ++rank;
+    }
+  m.Bt = Jinv * T;
+  m.has_rotation = rank == 3;
+  return m;
+}
+
+Marker make_ground_marker(const std::string& name, const Vec3& p_G, const Mat3& R_GM) {
+  Marker m;
+  m.name = name;
+  m.body = -1;
+  m.c = p_G;
+  m.R_LM = R_GM;
+  m.has_rotation = true;
+  return m;
+}
+
+void marker_motion(const Marker& m, const LofState& L, const double* q, const double* v,
+                   MarkerMotion& out) {
+  if (m.on_ground()) {
+    out.p = m.c;
+    out.v.setZero();
+    out.psi.setZero();
+    out.w.setZero();
+    out.R = m.R_LM;
+    return;
+  }
+  const Eigen::Index n = m.Bu.cols();
+  Eigen::Map<const Vec> qm(q, n), vm(v, n);
+  const Vec3 r_L = m.c + m.Bu * qm;
+  const Vec3 r_G = L.R_GL * r_L;
+  out.p = L.p_GL + r_G;
+  out.v = L.v_GL + L.w_GL_G.cross(r_G) + L.R_GL * (m.Bu * vm);
+  out.psi = L.psi_G + L.R_GL * (m.Bt * qm);
+  out.w = L.w_GL_G + L.R_GL * (m.Bt * vm);
+  out.R = L.R_GL * m.R_LM;
+}
+
+}  // namespace evas

@@ -1,0 +1,95 @@
+#include "solver/model.h"
+
+#include <cmath>
+
+namespace evas {
+
+namespace {
+// Locate the explicit rigid basis among the body's modes (needed for tracking).
+std::array<int, 6> find_rigid_modes(const ModalBody& b) {
+  std::array<int, 6> idx = {-1, -1, -1, -1, -1, -1};
+  bool any_rigid = false;
+  for (auto k : b.kinds) any_rigid = any_rigid || k == ModeKind::Rigid;
+  if (!any_rigid) return idx;
+  const Mat R = rigid_basis(b.s, b.mass);
+  const Mat MR = apply_mass(b.mass, R);
+  for (int r = 0; r < 6; ++r)
+    for (int j = 0; j < b.num_modes(); ++j) {
+      if (b.kinds[j] != ModeKind::Rigid) continue;
+      if ((b.modes.col(j) - R.col(r)).norm() <= 1e-8 * R.col(r).norm() &&
+          std::abs(MR.col(r).dot(b.modes.col(j)) - 1.0) < 1e-8) {
+        idx[r] = j;
+        break;
+      }
+    }
+  return idx;
+}
+}  // namespace
+
+int Model::add_body(const std::string& name, std::shared_ptr<const ModalBody> data,
+                    const Lof& lof) {
+  for (const auto& b : bodies_)
+    if (b.name == name) throw InputError("body '" + name + "' defined twice");
+  data->validate();
+  Body b;
+  b.name = name;
+  b.data = std::move(data);
+  b.inv = compute_invariants(*b.data);
+  b.mp = mass_properties(b.data->s, b.data->mass);
+  b.lof = lof;
+  b.offset = size_;
+  b.q0 = Vec::Zero(b.n());
+  b.v0 = Vec::Zero(b.n());
+  b.rigid = find_rigid_modes(*b.data);
+  if (lof.kind() == LofKind::Tracking)
+    for (int r : b.rigid)
+      if (r < 0)
+        throw InputError("body '" + name +
+                         "': a tracking LOF needs the six explicit rigid modes (rigid: true)");
+  size_ += b.n();
+  bodies_.push_back(std::move(b));
+  return static_cast<int>(bodies_.size()) - 1;
+}
+
+int Model::add_marker(Marker m) {
+  for (const auto& x : markers_)
+    if (x.name == m.name) throw InputError("marker '" + m.name + "' defined twice");
+  if (!m.on_ground()) {
+    if (m.body >= static_cast<int>(bodies_.size()))
+      throw InputError("marker '" + m.name + "': no such body");
+    if (m.Bu.cols() != bodies_[m.body].n())
+      throw InputError("marker '" + m.name + "': map size differs from body mode count");
+  }
+  markers_.push_back(std::move(m));
+  return static_cast<int>(markers_.size()) - 1;
+}
+
+int Model::add_element(std::unique_ptr<Element> e) {
+  for (const auto& x : elements_)
+    if (x->name() == e->name()) throw InputError("element '" + e->name() + "' defined twice");
+  for (int m : e->markers())
+    if (m < 0 || m >= static_cast<int>(markers_.size()))
+      throw InputError("element '" + e->name() + "': marker index out of range");
+  elements_.push_back(std::move(e));
+  return static_cast<int>(elements_.size()) - 1;
+}
+
+int Model::find_body(const std::string& name) const {
+  for (std::size_t i = 0; i < bodies_.size(); ++i)
+    if (bodies_[i].name == name) return static_cast<int>(i);
+  throw InputError("no body named '" + name + "'");
+}
+
+int Model::find_marker(const std::string& name) const {
+  for (std::size_t i = 0; i < markers_.size(); ++i)
+    if (markers_[i].name == name) return static_cast<int>(i);
+  throw InputError("no marker named '" + name + "'");
+}
+
+int Model::find_element(const std::string& name) const {
+  for (std::size_t i = 0; i < elements_.size(); ++i)
+    if (elements_[i]->name() == name) return static_cast<int>(i);
+  throw InputError("no element named '" + name + "'");
+}
+
+}  // namespace evas

@@ -1,0 +1,314 @@
+#include "solver/system.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+namespace evas {
+
+System::System(Model& model) : model_(model) {
+  auto& bodies = model_.bodies();
+  const int nb = static_cast<int>(bodies.size());
+  const int n = model_.size();
+  lof_.resize(nb);
+  bwork_.resize(nb);
+  for (int b = 0; b < nb; ++b) {
+    const int nbm = bodies[b].n();
+    bwork_[b].f0 = Vec::Zero(nbm);
+    bwork_[b].KW = Mat::Zero(nbm, nbm);
+    bwork_[b].G = Mat::Zero(nbm, nbm);
+  }
+  const auto& markers = model_.markers();
+  motion_.resize(markers.size());
+  Lm_.resize(markers.size());
+  Pq_.resize(markers.size());
+  Pv_.resize(markers.size());
+  int nmax = 1;
+  for (std::size_t m = 0; m < markers.size(); ++m) {
+    if (markers[m].on_ground()) continue;
+    const int nm = bodies[markers[m].body].n();
+    nmax = std::max(nmax, nm);
+    Lm_[m] = Mat::Zero(6, nm);
+    Pq_[m] = Mat::Zero(12, nm);
+    Pv_[m] = Mat::Zero(12, nm);
+  }
+  buf_a_.assign(12 * nmax, 0.0);
+  buf_b_.assign(static_cast<std::size_t>(nmax) * nmax, 0.0);
+
+  // Pattern: dense diagonal body blocks plus body-pair blocks of every element.
+  std::vector<char> pair(static_cast<std::size_t>(nb) * nb, 0);
+  for (int b = 0; b < nb; ++b) pair[b * nb + b] = 1;
+  ework_.resize(model_.elements().size());
+  for (std::size_t e = 0; e < model_.elements().size(); ++e) {
+    const auto& el = *model_.elements()[e];
+    const std::size_t k = el.markers().size();
+    ework_[e].motion.resize(k);
+    ework_[e].loads.resize(k);
+    ework_[e].D = Mat::Zero(6 * k, 12 * k);
+    for (int mi : el.markers())
+      for (int mj : el.markers()) {
+        const int bi = markers[mi].body, bj = markers[mj].body;
+        if (bi >= 0 && bj >= 0) pair[bi * nb + bj] = 1;
+      }
+  }
+  std::vector<Triplet> trip;
+  for (int bi = 0; bi < nb; ++bi)
+    for (int bj = 0; bj < nb; ++bj) {
+      if (!pair[bi * nb + bj]) continue;
+      for (int c = 0; c < bodies[bj].n(); ++c)
+        for (int r = 0; r < bodies[bi].n(); ++r)
+          trip.emplace_back(bodies[bi].offset + r, bodies[bj].offset + c, 1.0);
+    }
+  pattern_.resize(n, n);
+  pattern_.setFromTriplets(trip.begin(), trip.end());
+  pattern_.makeCompressed();
+  pattern_.coeffs().setZero();
+  block_start_.assign(static_cast<std::size_t>(nb) * nb, {});
+  for (int bi = 0; bi < nb; ++bi)
+    for (int bj = 0; bj < nb; ++bj) {
+      if (!pair[bi * nb + bj]) continue;
+      auto& starts = block_start_[bi * nb + bj];
+      starts.resize(bodies[bj].n());
+      for (int c = 0; c < bodies[bj].n(); ++c) {
+        const int col = bodies[bj].offset + c;
+        const int* begin = pattern_.innerIndexPtr() + pattern_.outerIndexPtr()[col];
+        const int* end = pattern_.innerIndexPtr() + pattern_.outerIndexPtr()[col + 1];
+        const int* it = std::lower_bound(begin, end, bodies[bi].offset);
+        starts[c] = static_cast<int>(it - pattern_.innerIndexPtr());
+      }
+    }
+}
+
+void System::initial_state(Vec& q, Vec& v) const {
+  q.resize(size());
+  v.resize(size());
+  for (const auto& b : model_.bodies()) {
+    q.segment(b.offset, b.n()) = b.q0;
+    v.segment(b.offset, b.n()) = b.v0;
+  }
+}
+
+void System::update_lof(double t) {
+  if (t == t_lof_) return;
+  auto& bodies = model_.bodies();
+  for (std::size_t b = 0; b < bodies.size(); ++b) {
+    const LofState& L = lof_[b] = bodies[b].lof.at(t);
+    const Vec3 a_L = L.R_GL.transpose() * (L.a_GL - model_.gravity);
+    const Vec3 w_L = L.R_GL.transpose() * L.w_GL_G;
+    const Vec3 al_L = L.R_GL.transpose() * L.al_GL_G;
+    frame_terms(bodies[b].inv, a_L, w_L, al_L, bwork_[b].f0, bwork_[b].KW, bwork_[b].G);
+  }
+  t_lof_ = t;
+}
+
+void System::update_markers(double t, const double* q, const double* v) {
+  update_lof(t);
+  const auto& markers = model_.markers();
+  const auto& bodies = model_.bodies();
+  static const LofState ground;
+  for (std::size_t m = 0; m < markers.size(); ++m) {
+    const int b = markers[m].body;
+    const int off = b >= 0 ? bodies[b].offset : 0;
+    marker_motion(markers[m], b >= 0 ? lof_[b] : ground, q + off, v + off, motion_[m]);
+  }
+}
+
+void System::force(double t, const double* q, const double* v, double* f) {
+  ++counters.f_evals;
+  update_markers(t, q, v);
+  const auto& bodies = model_.bodies();
+  for (std::size_t b = 0; b < bodies.size(); ++b) {
+    const Body& B = bodies[b];
+    const BodyWork& W = bwork_[b];
+    Eigen::Map<const Vec> qb(q + B.offset, B.n()), vb(v + B.offset, B.n());
+    Eigen::Map<Vec> fb(f + B.offset, B.n());
+    fb = W.f0 + B.data->eigenvalues.cwiseProduct(qb) + B.data->damping.cwiseProduct(vb);
+    fb.noalias() += W.KW * qb;
+    fb.noalias() += W.G * vb;
+  }
+  const auto& markers = model_.markers();
+  for (std::size_t e = 0; e < ework_.size(); ++e) {
+    const Element& el = *model_.elements()[e];
+    ElementWork& w = ework_[e];
+    const auto& ids = el.markers();
+    for (std::size_t i = 0; i < ids.size(); ++i) w.motion[i] = motion_[ids[i]];
+    el.evaluate(t, w.motion.data(), w.loads.data());
+    for (std::size_t i = 0; i < ids.size(); ++i) {
+      const Marker& m = markers[ids[i]];
+      if (m.on_ground()) continue;
+      const Body& B = bodies[m.body];
+      const Mat3& R = lof_[m.body].R_GL;
+      Eigen::Map<Vec> fb(f + B.offset, B.n());
+      const Vec3 F_L = R.transpose() * w.loads[i].F;
+      const Vec3 M_L = R.transpose() * w.loads[i].M;
+      fb.noalias() -= m.Bu.transpose() * F_L;
+      fb.noalias() -= m.Bt.transpose() * M_L;
+    }
+  }
+}
+
+void System::marker_maps(int mi) {
+  const Marker& m = model_.markers()[mi];
+  const LofState& L = lof_[m.body];
+  Mat& Lm = Lm_[mi];
+  Mat& Pq = Pq_[mi];
+  Mat& Pv = Pv_[mi];
+  Lm.topRows<3>().noalias() = L.R_GL * m.Bu;
+  Lm.bottomRows<3>().noalias() = L.R_GL * m.Bt;
+  Pq.middleRows<3>(0) = Lm.topRows<3>();
+  Pq.middleRows<3>(3).noalias() = skew(L.w_GL_G) * Lm.topRows<3>();
+  Pq.middleRows<3>(6) = Lm.bottomRows<3>();
+  Pq.middleRows<3>(9).setZero();
+  Pv.middleRows<3>(0).setZero();
+  Pv.middleRows<3>(3) = Lm.topRows<3>();
+  Pv.middleRows<3>(6).setZero();
+  Pv.middleRows<3>(9) = Lm.bottomRows<3>();
+}
+
+void System::add_block(double* values, int bi, int bj, const Eigen::Ref<const Mat>& B) const {
+  const auto& starts = block_start_[bi * static_cast<int>(model_.bodies().size()) + bj];
+  for (Eigen::Index c = 0; c < B.cols(); ++c) {
+    double* col = values + starts[c];
+    for (Eigen::Index r = 0; r < B.rows(); ++r) col[r] += B(r, c);
+  }
+}
+
+void System::force_jacobian(double t, const double* q, const double* v, SpMat& K, SpMat& C) {
+  ++counters.jac_evals;
+  body_operator(t, K, C);
+  update_markers(t, q, v);
+  const auto& markers = model_.markers();
+  const auto& bodies = model_.bodies();
+  for (std::size_t m = 0; m < markers.size(); ++m)
+    if (!markers[m].on_ground()) marker_maps(static_cast<int>(m));
+  for (std::size_t e = 0; e < ework_.size(); ++e) {
+    const Element& el = *model_.elements()[e];
+    ElementWork& w = ework_[e];
+    const auto& ids = el.markers();
+    for (std::size_t i = 0; i < ids.size(); ++i) w.motion[i] = motion_[ids[i]];
+    el.derivatives(t, w.motion.data(), w.D);
+    for (std::size_t i = 0; i < ids.size(); ++i) {
+      const int bi = markers[ids[i]].body;
+      if (bi < 0) continue;
+      for (std::size_t j = 0; j < ids.size(); ++j) {
+        const int bj = markers[ids[j]].body;
+        if (bj < 0) continue;
+        const int ni = bodies[bi].n(), nj = bodies[bj].n();
+        Eigen::Map<Mat> T(buf_a_.data(), 6, nj);
+        Eigen::Map<Mat> Blk(buf_b_.data(), ni, nj);
+        const auto Dij = w.D.block(6 * i, 12 * j, 6, 12);
+        // dQ_i/dq_j = Lm_i^T D_ij Pq_j ; f = ... - Q  =>  K -= Lm_i^T D_ij Pq_j
+        T.noalias() = Dij * Pq_[ids[j]];
+        Blk.noalias() = -Lm_[ids[i]].transpose() * T;
+        add_block(K.valuePtr(), bi, bj, Blk);
+        T.noalias() = Dij * Pv_[ids[j]];
+        Blk.noalias() = -Lm_[ids[i]].transpose() * T;
+        add_block(C.valuePtr(), bi, bj, Blk);
+      }
+    }
+  }
+}
+
+void System::body_operator(double t, SpMat& KB, SpMat& CB) {
+  update_lof(t);
+  KB.coeffs().setZero();
+  CB.coeffs().setZero();
+  const auto& bodies = model_.bodies();
+  for (std::size_t b = 0; b < bodies.size(); ++b) {
+    const Body& B = bodies[b];
+    const int bi = static_cast<int>(b);
+    add_block(KB.valuePtr(), bi, bi, bwork_[b].KW);
+    add_block(CB.valuePtr(), bi, bi, bwork_[b].G);
+    const auto& starts = block_start_[bi * static_cast<int>(bodies.size()) + bi];
+    for (int k = 0; k < B.n(); ++k) {
+      KB.valuePtr()[starts[k] + k] += B.data->eigenvalues[k];
+      CB.valuePtr()[starts[k] + k] += B.data->damping[k];
+    }
+  }
+}
+
+double System::next_stop(double t) const {
+  double next = std::numeric_limits<double>::infinity();
+  for (const auto& b : model_.bodies()) {
+    const double tol = 1e-12 * std::max(1.0, std::abs(t));
+    if (b.lof.kind() == LofKind::Spin) {
+      for (double k : b.lof.knots())
+        if (k > t + tol) {
+          next = std::min(next, k);
+          break;
+        }
+    } else if (b.lof.kind() == LofKind::Tracking) {
+      const double h = b.lof.interval();
+      double k = std::floor(t / h) + 1.0;
+      if (k * h <= t + tol) k += 1.0;
+      next = std::min(next, k * h);
+    }
+  }
+  return next;
+}
+
+bool System::at_stop(double t, double* q, double* v) {
+  bool changed = false;
+  const auto& bodies = model_.bodies();
+  for (std::size_t b = 0; b < bodies.size(); ++b) {
+    if (bodies[b].lof.kind() != LofKind::Tracking) continue;
+    const double h = bodies[b].lof.interval();
+    const double k = std::round(t / h);
+    if (std::abs(t - k * h) > 1e-9 * h) continue;
+    reanchor(static_cast<int>(b), t, q, v);
+    changed = true;
+  }
+  if (changed) t_lof_ = std::numeric_limits<double>::quiet_NaN();
+  return changed;
+}
+
+void System::reanchor(int bi, double t, double* q, double* v) {
+  Body& B = model_.bodies()[bi];
+  const MassProperties& mp = B.mp;
+  double* qb = q + B.offset;
+  double* vb = v + B.offset;
+  const double sm = std::sqrt(mp.mass);
+  Vec3 dc, dcd, th, thd;
+  for (int a = 0; a < 3; ++a) {
+    dc[a] = qb[B.rigid[a]] / sm;
+    dcd[a] = vb[B.rigid[a]] / sm;
+  }
+  th.setZero();
+  thd.setZero();
+  for (int k = 0; k < 3; ++k) {
+    const double sj = std::sqrt(mp.principal_moments[k]);
+    th += mp.principal_axes.col(k) * (qb[B.rigid[3 + k]] / sj);
+    thd += mp.principal_axes.col(k) * (vb[B.rigid[3 + k]] / sj);
+  }
+  const LofState L = B.lof.at(t);
+  LofState N;
+  N.R_GL = L.R_GL * rotation_from_vector(th);
+  const Vec3 rc = L.R_GL * (mp.com + dc);
+  N.p_GL = L.p_GL + rc - N.R_GL * mp.com;
+  N.w_GL_G = L.w_GL_G + L.R_GL * thd;
+  const Vec3 v_com = L.v_GL + L.w_GL_G.cross(rc) + L.R_GL * dcd;
+  N.v_GL = v_com - N.w_GL_G.cross(N.R_GL * mp.com);
+  N.psi_G = L.psi_G + L.R_GL * th;
+  B.lof.reanchor(t, N);
+  for (int r : B.rigid) {
+    qb[r] = 0.0;
+    vb[r] = 0.0;
+  }
+}
+
+std::string System::describe_state(double t, const double* q, const double* v) const {
+  std::ostringstream os;
+  os << "t = " << t << " s";
+  for (const auto& b : model_.bodies()) {
+    Eigen::Map<const Vec> qb(q + b.offset, b.n()), vb(v + b.offset, b.n());
+    Eigen::Index iq = 0, iv = 0;
+    const double mq = b.n() ? qb.cwiseAbs().maxCoeff(&iq) : 0.0;
+    const double mv = b.n() ? vb.cwiseAbs().maxCoeff(&iv) : 0.0;
+    os << "; body '" << b.name << "': max|q| = " << mq << " (mode " << iq << "), max|v| = " << mv
+       << " (mode " << iv << ")";
+    if (!qb.allFinite() || !vb.allFinite()) os << " NON-FINITE";
+  }
+  return os.str();
+}
+
+}  // namespace evas

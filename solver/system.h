@@ -1,0 +1,69 @@
+// The Problem of a Model: Eq. 1 for every body plus the element loads.
+//
+// State layout: q = [q_body0; q_body1; ...] (Body::offset), v likewise.
+// Per body b:
+//   f_b = S^T a_L + sum W_ab p_ab + (Lambda + KW) q_b + (C + G) v_b - Q_b(t, q, v)
+// with a_L = R_LG (a_GL - g). Jacobian blocks: (Lambda + KW, C + G) dense on the
+// body's diagonal block, plus Lm^T D Pq / Lm^T D Pv for every pair of markers
+// an element touches (Lm = [R Bu; R Bt], the marker map in G).
+#pragma once
+
+#include <limits>
+#include <vector>
+
+#include "solver/model.h"
+#include "solver/problem.h"
+
+namespace evas {
+
+class System : public Problem {
+ public:
+  explicit System(Model& model);
+
+  int size() const override { return model_.size(); }
+  void initial_state(Vec& q, Vec& v) const override;
+  void force(double t, const double* q, const double* v, double* f) override;
+  void force_jacobian(double t, const double* q, const double* v, SpMat& K, SpMat& C) override;
+  const SpMat& jacobian_pattern() const override { return pattern_; }
+  void body_operator(double t, SpMat& KB, SpMat& CB) override;
+  double next_stop(double t) const override;
+  bool at_stop(double t, double* q, double* v) override;
+  std::string describe_state(double t, const double* q, const double* v) const override;
+
+  /// Marker motions and element loads at (t, q, v) (for outputs and tests).
+  void update_markers(double t, const double* q, const double* v);
+  const MarkerMotion& motion(int marker) const { return motion_[marker]; }
+  const LofState& lof_state(int body) const { return lof_[body]; }
+  Model& model() { return model_; }
+
+ private:
+  struct ElementWork {
+    std::vector<MarkerMotion> motion;
+    std::vector<MarkerLoad> loads;
+    Mat D;
+  };
+  struct BodyWork {
+    Vec f0;
+    Mat KW, G;
+  };
+  void update_lof(double t);
+  void marker_maps(int marker);
+  /// Adds the dense block B (rows of body bi, columns of body bj) into values.
+  void add_block(double* values, int bi, int bj, const Eigen::Ref<const Mat>& B) const;
+  void reanchor(int body, double t, double* q, double* v);
+
+  Model& model_;
+  SpMat pattern_;
+  std::vector<LofState> lof_;
+  std::vector<MarkerMotion> motion_;
+  std::vector<ElementWork> ework_;
+  std::vector<BodyWork> bwork_;
+  std::vector<Mat> Lm_, Pq_, Pv_;      // per marker (G components): 6 x n, 12 x n, 12 x n
+  std::vector<double> buf_a_, buf_b_;  // scratch for element blocks
+  // block_start_[bi * nb + bj][c]: value index of the first row of body bi in
+  // column offset(bj) + c of the pattern (-1 if the block is absent).
+  std::vector<std::vector<int>> block_start_;
+  double t_lof_ = std::numeric_limits<double>::quiet_NaN();
+};
+
+}  // namespace evas

@@ -1,0 +1,18 @@
+#include "solver/types.h"
+
+#include <cmath>
+
+namespace evas {
+
+Mat3 rotation_from_vector(const Vec3& phi) {
+  const double a = phi.norm();
+  if (a < 1e-300) return Mat3::Identity() + skew(phi);
+  return Eigen::AngleAxisd(a, phi / a).toRotationMatrix();
+}
+
+Vec3 vector_from_rotation(const Mat3& R) {
+  Eigen::AngleAxisd aa(R);
+  return aa.angle() * aa.axis();
+}
+
+}  // namespace evas
