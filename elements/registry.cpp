@@ -3,7 +3,13 @@
 #include <cmath>
 #include <sstream>
 
+#include "elements/belt.h"
+#include "elements/engine_mount.h"
+#include "elements/journal_bearing.h"
+#include "elements/motor.h"
+#include "elements/piston_conrod.h"
 #include "elements/spring_damper.h"
+#include "elements/thrust_bearing.h"
 
 namespace evas {
 
@@ -49,6 +55,12 @@ std::vector<ElementType> make_types() {
     };
     types.push_back(std::move(t));
   }
+  types.push_back(journal_bearing_element_type());
+  types.push_back(piston_conrod_element_type());
+  types.push_back(motor_element_type());
+  types.push_back(engine_mount_element_type());
+  types.push_back(thrust_bearing_element_type());
+  types.push_back(belt_element_type());
   return types;
 }
 

@@ -40,7 +40,7 @@ struct ParamValues {
 struct ElementType {
   std::string type;
   std::string doc;
-  int num_markers = 2;
+  int num_markers = 2;  ///< exact marker count; 0 = two or more (checked by the factory)
   std::vector<ParamSpec> params;
   /// Builds the element; `where` names the element for error messages.
   std::function<std::unique_ptr<Element>(const std::string& name, const std::vector<int>& markers,

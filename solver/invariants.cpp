@@ -35,21 +35,35 @@ ModalInvariants compute_invariants(const ModalBody& body) {
   return inv;
 }
 
-void frame_terms(const ModalInvariants& inv, const Vec3& a_L, const Vec3& w_L, const Vec3& al_L,
-                 Vec& f0, Mat& KW, Mat& G) {
-  const Mat3 Om = skew(w_L);
-  const Mat3 W = skew(al_L) + Om * Om;
+void frame_force(const ModalInvariants& inv, const Vec3& a_L, const Mat3& W, Vec& f0) {
   f0.noalias() = inv.S.transpose() * a_L;
+  for (int a = 0; a < 3; ++a)
+    for (int b = 0; b < 3; ++b)
+      if (W(a, b) != 0.0) f0 += W(a, b) * inv.p[a][b];
+}
+
+void frame_matrices(const ModalInvariants& inv, const Mat3& W, const Mat3& Om, Mat& KW, Mat& G) {
   KW.setZero();
   G.setZero();
   for (int a = 0; a < 3; ++a)
     for (int b = 0; b < 3; ++b) {
-      if (W(a, b) != 0.0) {
-        f0 += W(a, b) * inv.p[a][b];
-        KW += W(a, b) * inv.M[a][b];
-      }
+      if (W(a, b) != 0.0) KW += W(a, b) * inv.M[a][b];
       if (Om(a, b) != 0.0) G += (2.0 * Om(a, b)) * inv.M[a][b];
     }
+}
+
+void frame_terms(const ModalInvariants& inv, const Vec3& a_L, const Vec3& w_L, const Vec3& al_L,
+                 Vec& f0, Mat& KW, Mat& G) {
+  const Mat3 Om = skew(w_L);
+  const Mat3 W = skew(al_L) + Om * Om;
+  frame_force(inv, a_L, W, f0);
+  frame_matrices(inv, W, Om, KW, G);
+}
+
+Mat3 rigid_rotation_correction(const Mat3& J, const Vec3& w, const Vec3& al) {
+  const double half_tr = 0.5 * J.trace();
+  const Mat3 wt = skew(w), alt = skew(al);
+  return J * alt - half_tr * alt - wt * skew(J * w) + half_tr * wt * wt + w.squaredNorm() * J;
 }
 
 Vec eq1_literal(const ModalBody& body, const Mat3& A, const Vec3& a_G, const Vec3& w_G,

@@ -29,6 +29,24 @@ ModalInvariants compute_invariants(const ModalBody& body);
 void frame_terms(const ModalInvariants& inv, const Vec3& a_L, const Vec3& w_L, const Vec3& al_L,
                  Vec& f0, Mat& KW, Mat& G);
 
+/// The two parts of frame_terms: f0 (O(n), changes with gravity seen from a
+/// rotating frame) and KW, G (O(n^2), change only when W or Omega change).
+void frame_force(const ModalInvariants& inv, const Vec3& a_L, const Mat3& W, Vec& f0);
+void frame_matrices(const ModalInvariants& inv, const Mat3& W, const Mat3& Om, Mat& KW, Mat& G);
+
+/// Correction of the rigid-rotation block for the linearised small rotation.
+/// Eq. 1 moves a node by theta x d for a rigid rotation theta about the centre
+/// of mass; in a rotating frame this linearisation gives the rotation modes a
+/// spurious centrifugal stiffness (-omega^2 J about the spin axis: a spinning
+/// crankshaft would be torsionally unstable on a soft clutch). Linearising
+/// Euler's equations in the frame instead gives the exact first-order stiffness
+///   K_exact = -(J al)~ + J al~ + w~ (J w~ - (J w)~),
+/// while the modal form yields K_lin = -sum m d~ W d~ (W = al~ + w~ w~); the
+/// difference, in rotation-vector components (J about the centre of mass, L axes):
+///   K_geo = J al~ - tr(J)/2 al~ - w~ (J w)~ + tr(J)/2 w~ w~ + |w|^2 J.
+/// The gyroscopic terms of both forms agree. See docs/theory.md.
+Mat3 rigid_rotation_correction(const Mat3& J, const Vec3& w_L, const Vec3& al_L);
+
 /// Eq. 1 evaluated literally with sums over the nodes (lumped masses only), as
 /// the paper writes it. Returns the left side minus the modal forces:
 ///   qdd + sum_i m_i Phi_i^T A^T a + ... + Lambda q + C qd - sum_i Phi_i^T A^T F_i.

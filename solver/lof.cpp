@@ -29,11 +29,21 @@ Lof Lof::spin(const Vec3& p_GL, const Mat3& R_GL0, const Vec3& axis_G, double th
   f.theta0_ = theta0;
   f.times_ = std::move(times);
   f.speeds_ = std::move(speeds);
-  // angles_[i] = integral of omega from times_[0] to times_[i] (trapezoids: omega is linear)
-  f.angles_.assign(f.times_.size(), 0.0);
-  for (std::size_t i = 1; i < f.times_.size(); ++i)
-    f.angles_[i] = f.angles_[i - 1] +
-                   0.5 * (f.speeds_[i] + f.speeds_[i - 1]) * (f.times_[i] - f.times_[i - 1]);
+  const std::size_t K = f.times_.size();
+  // Fritsch-Carlson slopes: zero at the ends and at local extrema, harmonic mean elsewhere.
+  f.slopes_.assign(K, 0.0);
+  for (std::size_t i = 1; i + 1 < K; ++i) {
+    const double d0 = (f.speeds_[i] - f.speeds_[i - 1]) / (f.times_[i] - f.times_[i - 1]);
+    const double d1 = (f.speeds_[i + 1] - f.speeds_[i]) / (f.times_[i + 1] - f.times_[i]);
+    if (d0 * d1 > 0.0) f.slopes_[i] = 2.0 / (1.0 / d0 + 1.0 / d1);
+  }
+  f.angles_.assign(K, 0.0);
+  for (std::size_t i = 1; i < K; ++i) {
+    const double h = f.times_[i] - f.times_[i - 1];
+    // integral of the cubic Hermite segment over its whole length
+    f.angles_[i] = f.angles_[i - 1] + h * (0.5 * (f.speeds_[i - 1] + f.speeds_[i]) +
+                                           h * (f.slopes_[i - 1] - f.slopes_[i]) / 12.0);
+  }
   return f;
 }
 
@@ -51,32 +61,62 @@ Lof Lof::tracking(const Vec3& p_GL, const Mat3& R_GL, const Vec3& v_GL, const Ve
   return f;
 }
 
+void Lof::set_origin_motion(const Vec3& v0, const Vec3& a0) {
+  if (kind_ == LofKind::Tracking)
+    throw InputError(
+        "tracking LOF: the origin motion follows the body; velocity/acceleration "
+        "cannot be prescribed");
+  v0_ = v0;
+  a0_ = a0;
+}
+
 namespace {
-// Integral of the piecewise-linear speed from times[0] to t (constant outside).
-double profile_integral(const std::vector<double>& T, const std::vector<double>& W,
-                        const std::vector<double>& I, double t) {
-  if (t <= T.front()) return W.front() * (t - T.front());
-  if (t >= T.back()) return I.back() + W.back() * (t - T.back());
+// Segment k of a profile containing t (times[k] <= t < times[k+1]) and s in [0, 1].
+std::size_t segment(const std::vector<double>& T, double t, double& s) {
   const std::size_t k = std::upper_bound(T.begin(), T.end(), t) - T.begin() - 1;
-  const double dt = t - T[k], h = T[k + 1] - T[k];
-  const double slope = (W[k + 1] - W[k]) / h;
-  return I[k] + W[k] * dt + 0.5 * slope * dt * dt;
+  s = (t - T[k]) / (T[k + 1] - T[k]);
+  return k;
 }
 }  // namespace
+
+double Lof::speed_integral(double t) const {
+  const auto& T = times_;
+  if (t <= T.front()) return speeds_.front() * (t - T.front());
+  if (t >= T.back()) return angles_.back() + speeds_.back() * (t - T.back());
+  double x;
+  const std::size_t k = segment(T, t, x);
+  const double h = T[k + 1] - T[k], x2 = x * x, x3 = x2 * x, x4 = x3 * x;
+  // integrals of the Hermite basis h00, h10, h01, h11 over [0, x]
+  const double i00 = 0.5 * x4 - x3 + x, i10 = 0.25 * x4 - 2.0 * x3 / 3.0 + 0.5 * x2;
+  const double i01 = -0.5 * x4 + x3, i11 = 0.25 * x4 - x3 / 3.0;
+  return angles_[k] + h * (i00 * speeds_[k] + i10 * h * slopes_[k] + i01 * speeds_[k + 1] +
+                           i11 * h * slopes_[k + 1]);
+}
 
 double Lof::spin_speed(double t) const {
   if (kind_ != LofKind::Spin) return 0.0;
   if (t <= times_.front()) return speeds_.front();
   if (t >= times_.back()) return speeds_.back();
-  const std::size_t k = std::upper_bound(times_.begin(), times_.end(), t) - times_.begin() - 1;
-  const double x = (t - times_[k]) / (times_[k + 1] - times_[k]);
-  return speeds_[k] + x * (speeds_[k + 1] - speeds_[k]);
+  double x;
+  const std::size_t k = segment(times_, t, x);
+  const double h = times_[k + 1] - times_[k], x2 = x * x, x3 = x2 * x;
+  return (2 * x3 - 3 * x2 + 1) * speeds_[k] + (x3 - 2 * x2 + x) * h * slopes_[k] +
+         (-2 * x3 + 3 * x2) * speeds_[k + 1] + (x3 - x2) * h * slopes_[k + 1];
+}
+
+double Lof::spin_acceleration(double t) const {
+  if (kind_ != LofKind::Spin || t <= times_.front() || t >= times_.back()) return 0.0;
+  double x;
+  const std::size_t k = segment(times_, t, x);
+  const double h = times_[k + 1] - times_[k], x2 = x * x;
+  return ((6 * x2 - 6 * x) * speeds_[k] + (3 * x2 - 4 * x + 1) * h * slopes_[k] +
+          (-6 * x2 + 6 * x) * speeds_[k + 1] + (3 * x2 - 2 * x) * h * slopes_[k + 1]) /
+         h;
 }
 
 double Lof::spin_angle(double t) const {
   if (kind_ != LofKind::Spin) return 0.0;
-  return theta0_ + profile_integral(times_, speeds_, angles_, t) -
-         profile_integral(times_, speeds_, angles_, 0.0);
+  return theta0_ + speed_integral(t) - speed_integral(0.0);
 }
 
 LofState Lof::at(double t) const {
@@ -90,12 +130,7 @@ LofState Lof::at(double t) const {
       if (kind_ == LofKind::Spin) {
         const double th = spin_angle(t);
         const double w = spin_speed(t);
-        double al = 0.0;
-        if (t > times_.front() && t < times_.back()) {
-          const std::size_t k =
-              std::upper_bound(times_.begin(), times_.end(), t) - times_.begin() - 1;
-          al = (speeds_[k + 1] - speeds_[k]) / (times_[k + 1] - times_[k]);
-        }
+        const double al = spin_acceleration(t);
         s.R_GL = Eigen::AngleAxisd(th, axis_).toRotationMatrix() * R0_;
         s.w_GL_G = w * axis_;
         s.al_GL_G = al * axis_;

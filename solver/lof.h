@@ -3,8 +3,11 @@
 // The motion of a LOF is prescribed, not solved for. Kinds:
 //  - fixed:     constant pose.
 //  - spin:      rotation by angle theta(t) about a fixed axis (G components) through
-//               a fixed point, speed constant or a piecewise-linear profile
-//               omega(t); optionally the origin moves with constant acceleration.
+//               a fixed point, speed constant or a profile omega(t) through given
+//               knots: monotone cubic Hermite (Fritsch-Carlson), flat at the first
+//               and last knot, so that the angular acceleration is continuous
+//               (a jump in alpha would cost the integrators their order);
+//               optionally the origin moves with constant acceleration.
 //  - tracking:  moves with constant velocity and angular velocity between
 //               anchors; at each anchor the body's rigid-mode motion is moved
 //               into the frame and the rigid coordinates are reset (paper:
@@ -26,7 +29,8 @@ struct LofState {
   Mat3 R_GL = Mat3::Identity();
   Vec3 w_GL_G = Vec3::Zero();   ///< angular velocity [rad/s]
   Vec3 al_GL_G = Vec3::Zero();  ///< angular acceleration [rad/s^2]
-  Vec3 psi_G = Vec3::Zero();    ///< accumulated rotation vector since t0 (spin: theta*axis) [rad]
+  Vec3 psi_G = Vec3::Zero();    ///< rotation vector: spin theta(t)*axis (theta0 included), fixed 0,
+                                ///< tracking: accumulated since t0 [rad]
 };
 
 enum class LofKind { Fixed, Spin, Tracking };
@@ -35,8 +39,8 @@ class Lof {
  public:
   /// Fixed frame at pose (p, R).
   static Lof fixed(const Vec3& p_GL, const Mat3& R_GL);
-  /// Spin about unit axis (G) through p_GL at speed profile omega(t): piecewise linear
-  /// through (times, speeds); a single point means constant speed.
+  /// Spin about unit axis (G) through p_GL at speed profile omega(t) through
+  /// (times, speeds); a single point means constant speed. theta(0) = theta0.
   static Lof spin(const Vec3& p_GL, const Mat3& R_GL0, const Vec3& axis_G, double theta0,
                   std::vector<double> times, std::vector<double> speeds);
   /// Tracking frame starting at (p, R) with velocity v and angular velocity w (G),
@@ -44,11 +48,8 @@ class Lof {
   static Lof tracking(const Vec3& p_GL, const Mat3& R_GL, const Vec3& v_GL, const Vec3& w_GL_G,
                       double interval);
 
-  /// Uniform linear acceleration of the origin (any kind but tracking).
-  void set_origin_motion(const Vec3& v0, const Vec3& a0) {
-    v0_ = v0;
-    a0_ = a0;
-  }
+  /// Uniform linear acceleration of the origin (fixed and spin kinds only).
+  void set_origin_motion(const Vec3& v0, const Vec3& a0);
 
   LofKind kind() const { return kind_; }
   LofState at(double t) const;
@@ -58,6 +59,7 @@ class Lof {
   /// Spin angle theta(t) about the axis [rad] (0 for other kinds).
   double spin_angle(double t) const;
   double spin_speed(double t) const;
+  double spin_acceleration(double t) const;
   const Vec3& axis() const { return axis_; }
 
   /// Tracking only: move the frame to a new anchor state at time t.
@@ -69,7 +71,8 @@ class Lof {
   Mat3 R0_ = Mat3::Identity();
   Vec3 axis_ = Vec3::UnitZ();
   double theta0_ = 0.0;
-  std::vector<double> times_, speeds_, angles_;  // angles_ = theta at knots
+  std::vector<double> times_, speeds_, slopes_, angles_;  // angles_: integral from times_[0]
+  double speed_integral(double t) const;
   // tracking
   double t_anchor_ = 0.0, interval_ = 0.0;
   Vec3 w0_ = Vec3::Zero(), psi_anchor_ = Vec3::Zero();

@@ -39,17 +39,18 @@ Marker make_set_marker(const std::string& name, int body, const ModalBody& b,
   Marker m;
   m.name = name;
   m.body = body;
-  m.c = centre ? *centre : Vec3(centroid / wsum);
-  m.Bu = Mat3X::Zero(3, n);
+  centroid /= wsum;
+  // Least-squares fit of a rigid motion (u, theta) about the weighted centroid:
+  // u = sum w u_i / sum w, theta = J^+ sum w d_i x (u_i - u), d_i = s_i - centroid.
+  Mat3X Bu = Mat3X::Zero(3, n);
   for (std::size_t k = 0; k < idx.size(); ++k)
-    m.Bu += (w[k] / wsum) * b.modes.middleRows(3 * idx[k], 3);
-  // Least-squares small rotation about c: theta = J^+ sum w d x (u_i - u_m).
+    Bu += (w[k] / wsum) * b.modes.middleRows(3 * idx[k], 3);
   Mat3 J = Mat3::Zero();
   Mat3X T = Mat3X::Zero(3, n);
   for (std::size_t k = 0; k < idx.size(); ++k) {
-    const Vec3 d = b.s.row(idx[k]).transpose() - m.c;
+    const Vec3 d = b.s.row(idx[k]).transpose() - centroid;
     J += w[k] * (d.squaredNorm() * Mat3::Identity() - d * d.transpose());
-    T += w[k] * skew(d) * (b.modes.middleRows(3 * idx[k], 3) - m.Bu);
+    T += w[k] * skew(d) * (b.modes.middleRows(3 * idx[k], 3) - Bu);
   }
   Eigen::SelfAdjointEigenSolver<Mat3> es(J);
   const double lmax = es.eigenvalues().maxCoeff();
@@ -62,6 +63,10 @@ Marker make_set_marker(const std::string& name, int body, const ModalBody& b,
     }
   m.Bt = Jinv * T;
   m.has_rotation = rank == 3;
+  // The marker point: the centroid, or a given centre carried rigidly by the fit
+  // (u_c = u + theta x (c - centroid)).
+  m.c = centre ? *centre : centroid;
+  m.Bu = Bu - skew(m.c - centroid) * m.Bt;
   return m;
 }
 

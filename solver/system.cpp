@@ -96,9 +96,34 @@ void System::update_lof(double t) {
     const Vec3 a_L = L.R_GL.transpose() * (L.a_GL - model_.gravity);
     const Vec3 w_L = L.R_GL.transpose() * L.w_GL_G;
     const Vec3 al_L = L.R_GL.transpose() * L.al_GL_G;
-    frame_terms(bodies[b].inv, a_L, w_L, al_L, bwork_[b].f0, bwork_[b].KW, bwork_[b].G);
+    BodyWork& w = bwork_[b];
+    const Mat3 Om = skew(w_L);
+    const Mat3 W = skew(al_L) + Om * Om;
+    frame_force(bodies[b].inv, a_L, W, w.f0);
+    // KW and G cost O(n^2): rebuild them only when the frame's rotation rates change
+    // (never for a fixed LOF, a constant-speed spin or between tracking anchors).
+    const double tol = 1e-13 * (1.0 + W.norm() + Om.norm());
+    if (!w.built || (W - w.W).norm() > tol || (Om - w.Om).norm() > tol) {
+      frame_matrices(bodies[b].inv, W, Om, w.KW, w.G);
+      add_rotation_correction(bodies[b], w_L, al_L, w.KW);
+      w.W = W;
+      w.Om = Om;
+      w.built = true;
+    }
   }
   t_lof_ = t;
+}
+
+void System::add_rotation_correction(const Body& B, const Vec3& w_L, const Vec3& al_L, Mat& KW) {
+  for (int k = 3; k < 6; ++k)
+    if (B.rigid[k] < 0) return;  // no explicit rotation basis: nothing linearised to correct
+  // theta = T q_R with T = E diag(1/sqrt(J_k)) (solver/modal_body.cpp rigid_basis).
+  Mat3 T;
+  for (int k = 0; k < 3; ++k)
+    T.col(k) = B.mp.principal_axes.col(k) / std::sqrt(B.mp.principal_moments[k]);
+  const Mat3 Kq = T.transpose() * rigid_rotation_correction(B.mp.inertia, w_L, al_L) * T;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) KW(B.rigid[3 + i], B.rigid[3 + j]) += Kq(i, j);
 }
 
 void System::update_markers(double t, const double* q, const double* v) {

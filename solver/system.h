@@ -45,8 +45,11 @@ class System : public Problem {
   struct BodyWork {
     Vec f0;
     Mat KW, G;
+    Mat3 W, Om;  // frame matrices KW, G were last built for
+    bool built = false;
   };
   void update_lof(double t);
+  static void add_rotation_correction(const Body& B, const Vec3& w_L, const Vec3& al_L, Mat& KW);
   void marker_maps(int marker);
   /// Adds the dense block B (rows of body bi, columns of body bj) into values.
   void add_block(double* values, int bi, int bj, const Eigen::Ref<const Mat>& B) const;

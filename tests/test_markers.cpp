@@ -53,3 +53,21 @@ TEST(Markers, MotionInGroundFrame) {
   EXPECT_LT((mm.v - Vec3(0, 0, 10).cross(r)).norm(), 1e-12);
   EXPECT_NEAR(mm.psi.z(), 1.0, 1e-14);  // 10 rad/s for 0.1 s
 }
+
+TEST(Markers, SetMarkerAboutAGivenCentreFollowsRigidMotion) {
+  // Found in review: a centre away from the centroid must not change the fitted
+  // rotation, and its translation is that of the rigidly attached point.
+  const ModalBody b = test_bodies::random_body(30, 3, 4);
+  std::vector<long> ids(b.node_ids.begin(), b.node_ids.begin() + 10);
+  const Vec3 centre(0.4, -0.3, 0.2);
+  const Marker m = make_set_marker("m", 0, b, ids, {}, &centre);
+  const MassProperties mp = mass_properties(b.s, b.mass);
+  const Vec3 T(1e-3, 2e-3, -1e-3), th(2e-4, -1e-4, 3e-4);
+  Vec u(3 * b.num_nodes());
+  for (int i = 0; i < b.num_nodes(); ++i)
+    u.segment<3>(3 * i) = T + th.cross(b.s.row(i).transpose() - mp.com);
+  const Vec q = b.modes.transpose() * apply_mass(b.mass, u);
+  EXPECT_LT((m.Bt * q - th).norm(), 1e-12 * th.norm());
+  EXPECT_LT((m.Bu * q - (T + th.cross(centre - mp.com))).norm(), 1e-12 * T.norm());
+  EXPECT_LT((m.c - centre).norm(), 1e-15);
+}

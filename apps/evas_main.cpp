@@ -1,0 +1,56 @@
+// evas: engine-vibration multibody simulation. Dispatches to the sub-commands
+// in apps/cmd_*.cpp.
+#include <boost/program_options/errors.hpp>
+#include <cstring>
+#include <iostream>
+
+#include "apps/commands.h"
+#include "solver/types.h"
+
+namespace {
+
+const char* kUsage =
+    "usage: evas <command> [options]\n"
+    "\n"
+    "commands:\n"
+    "  run SCENE.yaml      simulate a scene; writes results.h5, summary.json (and results.csv)\n"
+    "  info BODY.h5        modes, mass properties and invariant checks of a modal-body file\n"
+    "  export RESULTS.h5   convert a results file (--csv FILE)\n"
+    "  body truss OUT.h5   generate a modal-body file of a truss beam\n"
+    "  elements            reference of every force element and its parameters (Markdown)\n"
+    "\n"
+    "`evas <command> --help` describes the options of each command.\n";
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc < 2 || !std::strcmp(argv[1], "--help") || !std::strcmp(argv[1], "-h") ||
+      !std::strcmp(argv[1], "help")) {
+    std::cout << kUsage;
+    return argc < 2 ? 1 : 0;
+  }
+  const std::string cmd = argv[1];
+  if (cmd == "--version") {
+    std::cout << "evas 0.1.0\n";
+    return 0;
+  }
+  const std::vector<std::string> args(argv + 1, argv + argc);
+  try {
+    if (cmd == "run") return evas::cli::cmd_run(args);
+    if (cmd == "info") return evas::cli::cmd_info(args);
+    if (cmd == "export") return evas::cli::cmd_export(args);
+    if (cmd == "body") return evas::cli::cmd_body(args);
+    if (cmd == "elements") return evas::cli::cmd_elements(args);
+  } catch (const boost::program_options::error& e) {
+    std::cerr << "evas " << cmd << ": " << e.what() << " (see `evas " << cmd << " --help`)\n";
+    return 1;
+  } catch (const evas::InputError& e) {
+    std::cerr << "evas " << cmd << ": " << e.what() << "\n";
+    return 1;
+  } catch (const std::exception& e) {
+    std::cerr << "evas " << cmd << ": " << e.what() << "\n";
+    return 2;
+  }
+  std::cerr << "evas: unknown command '" << cmd << "'\n\n" << kUsage;
+  return 1;
+}

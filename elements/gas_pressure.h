@@ -1,0 +1,96 @@
+// Cylinder gas pressure over one four-stroke cycle (720 deg of crank angle).
+//
+// A PressureTable holds measured or synthetic points (cycle angle, pressure)
+// and interpolates them periodically with a monotone piecewise-cubic Hermite
+// curve (Fritsch-Carlson / Fritsch-Butland slopes, the PCHIP of MATLAB and
+// SciPy, wrapped around the period): C1, local, and free of overshoot, so a
+// steep combustion rise never rings and the curve stays within the range of
+// its neighbouring data (docs/elements-piston-motor.md explains the choice).
+//
+// Cycle angle convention: 0 = firing TDC of the cylinder; the curve has
+// period 720 deg. Angles passed in are in radians (period 4 pi); pressures in
+// Pa; slopes in Pa/rad.
+//
+// Text file format (docs/elements-piston-motor.md):
+//     # unit: bar            <- required before the first data line: bar, kPa, MPa or Pa
+//     # any other comment
+//     0.0    1.85            <- crank_angle_deg  pressure, any spaces/tabs
+//     0.5    1.86
+//     ...
+// Angles strictly increasing, the first in [0, max_gap], the last below 720
+// (a final row at first + 720 is accepted if its pressure repeats the first),
+// no spacing (wrap-around included) above max_gap.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "solver/types.h"
+
+namespace evas {
+
+class PressureTable {
+ public:
+  /// Largest accepted spacing between table angles (wrap-around included) [deg].
+  static constexpr double kDefaultMaxGap = 10.0;
+
+  PressureTable() = default;
+  /// From points (angles in deg, pressures in Pa). `where` names the source in
+  /// error messages. Same checks as the file reader.
+  PressureTable(std::vector<double> angle_deg, std::vector<double> p_Pa, const std::string& where,
+                double max_gap_deg = kDefaultMaxGap);
+
+  /// Reads the text format above; throws InputError naming file and line.
+  static PressureTable read(const std::string& path, double max_gap_deg = kDefaultMaxGap);
+  /// Writes the text format (unit bar, one row per point).
+  void write(const std::string& path, const std::string& comment) const;
+
+  /// Pressure [Pa] at cycle angle theta [rad] (any real value, period 4 pi); if
+  /// dp_dtheta is given, the slope [Pa/rad] there.
+  double operator()(double theta, double* dp_dtheta = nullptr) const;
+
+  bool empty() const { return angle_.empty(); }
+  const std::vector<double>& angles_deg() const { return angle_; }
+  const std::vector<double>& pressures() const { return p_; }
+  double max_pressure() const;
+
+ private:
+  void build();
+  std::vector<double> angle_, p_, slope_;  // slope_: dp/dangle [Pa/deg] at the knots
+};
+
+/// Synthetic direct-injection diesel cycle (references.md section 3): single
+/// zone, double Wiebe heat release, polytropic compression and expansion between
+/// inlet valve closing and exhaust valve opening, smooth gas-exchange pressures
+/// elsewhere. Defaults: one cylinder of a 4.1 L in-line four at 3000 rpm, full
+/// load (peak about 14 MPa about 10 deg after TDC).
+struct DieselCycle {
+  double bore = 0.106;    ///< [m]
+  double stroke = 0.116;  ///< [m]
+  double conrod = 0.190;  ///< [m]
+  double compression_ratio = 17.5;
+  double p_intake = 2.0e5;      ///< boost pressure, also the pressure at IVC [Pa]
+  double p_exhaust = 2.2e5;     ///< exhaust back pressure [Pa]
+  double ivc_deg = -145.0;      ///< inlet valve closing, cycle deg (firing TDC = 0)
+  double evo_deg = 130.0;       ///< exhaust valve opening
+  double n_compression = 1.36;  ///< polytropic exponent before combustion
+  double n_expansion = 1.30;    ///< polytropic exponent of the burnt charge
+  double soc_deg = -2.0;        ///< start of combustion
+  double wiebe_a = 6.9;
+  double premixed_fraction = 0.15;
+  double premixed_duration_deg = 8.0;
+  double premixed_m = 2.0;
+  double diffusion_duration_deg = 55.0;
+  double diffusion_m = 0.8;
+  /// Net heat released per cycle [J]; if target_peak > 0 it is found by bisection
+  /// so that the peak pressure equals target_peak.
+  double heat_release = 2.0e3;
+  double target_peak = 14.0e6;  ///< [Pa], <= 0 to use heat_release as given
+  double step_deg = 0.5;        ///< table spacing
+};
+
+/// Table of the synthetic cycle on [0, 720) with spacing `step_deg`; `used_heat`
+/// receives the heat release used [J].
+PressureTable synthetic_diesel_cycle(const DieselCycle& c, double* used_heat = nullptr);
+
+}  // namespace evas

@@ -1,0 +1,454 @@
+// Journal bearing element: see journal_bearing.h and docs/elements-journal-bearing.md.
+//
+// Derivation summary (bearing frame, right-handed x, y, axis a = z).
+// A point of the bearing bore at angle phi has outward normal u = (cos phi, sin phi).
+// With the journal centre at e (relative to the bearing centre) the radial gap is
+// h = c - e . u. The surfaces slide with speed sum om R in +phi (the bearing is the
+// reference, so om is the journal spin relative to the bearing), and the journal
+// centre moves with ed, so dh/dt = -ed . u and dh/dphi = -e . t, t = (-sin, cos).
+// Short-bearing Reynolds' equation (circumferential pressure flow neglected):
+//   d/dx (h^3 dp/dx) = 6 eta om dh/dphi + 12 eta dh/dt = -12 eta (ed . u + (om/2) e . t)
+// and e . t = -(J e) . u, so the right side is -12 eta W . u with W = ed - (om/2) J e.
+// Integrating twice with p(0) = p(B) = 0: p = 6 eta x (B - x) (W . u) / h^3.
+// In line-of-centres form (delta from the maximum film, in the direction of
+// rotation: u = -cos(delta) e/|e| - sin(delta) J e/|e|): h = c + e cos(delta),
+// W . u = (om/2 - gd) e sin(delta) - ed cos(delta), i.e. paper Eq. 3 up to the sign of
+// x (x - B) (see header). The pressure acts on the journal along -u:
+//   F = -R int_0^B int p u dphi dx = -eta R B^3 int_{W.u > 0} (W . u) u / h^3 dphi.
+#include "elements/journal_bearing.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+namespace evas {
+
+namespace {
+
+using V2 = Eigen::Vector2d;
+using M2 = Eigen::Matrix2d;
+
+// Rotation by +90 degrees in the bearing plane.
+V2 perp(const V2& x) { return V2(-x.y(), x.x()); }
+M2 J2() {
+  M2 J;
+  J << 0.0, -1.0, 1.0, 0.0;
+  return J;
+}
+
+// Sommerfeld substitution for 1 + eps cos(delta) = (1 - eps^2) / (1 - eps cos(psi)).
+struct Somm {
+  double psi, C, S;  // psi(delta) continuous, cos psi, sin psi
+};
+Somm sommerfeld(double delta, double eps) {
+  const double k = std::sqrt((1.0 - eps) / (1.0 + eps));
+  const double cd = std::cos(delta), sd = std::sin(delta);
+  Somm r;
+  // Continuous form of 2 atan(k tan(delta/2)) (no branch jump at delta = pi).
+  r.psi = delta - 2.0 * std::atan((1.0 - k) * sd / ((1.0 + k) + (1.0 - k) * cd));
+  const double den = 1.0 + eps * cd;
+  r.C = (cd + eps) / den;
+  r.S = std::sqrt(1.0 - eps * eps) * sd / den;
+  return r;
+}
+
+// Antiderivatives in psi of (cos psi - eps)^a sin^b psi for a + b = 2 and 3.
+// int cos^a(delta) sin^b(delta) / (1 + eps cos delta)^n d delta with a + b = n - 1
+//   = (1 - eps^2)^((b + 1)/2 - n) int (cos psi - eps)^a sin^b psi d psi.
+double anti(int a, int b, const Somm& z, double e) {
+  const double p = z.psi, C = z.C, S = z.S;
+  if (a + b == 2) {
+    if (a == 2) return 0.5 * p + 0.5 * S * C - 2.0 * e * S + e * e * p;
+    if (a == 1) return -0.5 * C * C + e * C;
+    return 0.5 * p - 0.5 * S * C;
+  }
+  switch (a) {
+    case 3:
+      return S - S * S * S / 3.0 - 3.0 * e * (0.5 * p + 0.5 * S * C) + 3.0 * e * e * S -
+             e * e * e * p;
+    case 2:
+      return -std::pow(C - e, 3) / 3.0;
+    case 1:
+      return S * S * S / 3.0 - e * (0.5 * p - 0.5 * S * C);
+    default:
+      return -C + C * C * C / 3.0;
+  }
+}
+
+std::string fmt(double x) {
+  std::ostringstream os;
+  os.precision(6);
+  os << x;
+  return os.str();
+}
+
+}  // namespace
+
+void gauss_legendre(int n, std::vector<double>& x, std::vector<double>& w) {
+  x.assign(n, 0.0);
+  w.assign(n, 0.0);
+  for (int i = 0; i < (n + 1) / 2; ++i) {
+    double z = std::cos(M_PI * (i + 0.75) / (n + 0.5)), dp = 0.0;
+    for (int it = 0; it < 100; ++it) {
+      double p0 = 1.0, p1 = 0.0;
+      for (int j = 1; j <= n; ++j) {  // recurrence for P_j(z)
+        const double p2 = p1;
+        p1 = p0;
+        p0 = ((2.0 * j - 1.0) * z * p1 - (j - 1.0) * p2) / j;
+      }
+      dp = n * (z * p0 - p1) / (z * z - 1.0);
+      const double dz = p0 / dp;
+      z -= dz;
+      if (std::abs(dz) < 1e-15) break;
+    }
+    x[i] = -z;
+    x[n - 1 - i] = z;
+    w[i] = w[n - 1 - i] = 2.0 / ((1.0 - z * z) * dp * dp);
+  }
+}
+
+JournalBearing::JournalBearing(std::string name, std::vector<int> markers,
+                               const JournalBearingParams& p)
+    : Element(std::move(name), std::move(markers)), p_(p) {
+  if (p_.halves == 2) {
+    // 2-point Gauss rule for the weight x (B - x) on [0, B]: nodes B/2 +- B/(2 sqrt 5).
+    const double s = p_.width / (2.0 * std::sqrt(5.0));
+    stations_ = {{-s, 0.5}, {s, 0.5}};
+  } else {
+    stations_ = {{0.0, 1.0}};
+  }
+  gauss_legendre(p_.n_delta, gl_x_, gl_w_);
+}
+
+FilmForce JournalBearing::hydro(const V2& e, const V2& ed, double om, double weight, bool derivs,
+                                bool closed_form) const {
+  const double c = p_.clearance;
+  const double K = p_.viscosity * p_.radius * std::pow(p_.width, 3) * weight;
+  const V2 W = ed - 0.5 * om * perp(e);
+  FilmForce r;
+  M2 M3 = M2::Zero();   // int u u^T / h^3 over the positive half circle
+  M2 T4W = M2::Zero();  // int (W . u) u u^T / h^4 over the positive half circle
+  if (closed_form) {
+    const double en = e.norm(), eps = en / c;
+    const V2 a1 = en > 0.0 ? V2(-e / en) : V2(1.0, 0.0);  // direction of maximum film
+    M2 Q;
+    Q.col(0) = a1;
+    Q.col(1) = perp(a1);
+    const V2 Wl = Q.transpose() * W;
+    const double dW = std::atan2(Wl.y(), Wl.x());
+    const Somm lo = sommerfeld(dW - 0.5 * M_PI, eps), hi = sommerfeld(dW + 0.5 * M_PI, eps);
+    const double s = 1.0 - eps * eps;
+    auto I = [&](int a, int b) {
+      const int n = a + b + 1;
+      return std::pow(s, 0.5 * (b + 1) - n) * (anti(a, b, hi, eps) - anti(a, b, lo, eps));
+    };
+    M2 M3l;
+    M3l << I(2, 0), I(1, 1), I(1, 1), I(0, 2);
+    M3l /= c * c * c;
+    M3 = Q * M3l * Q.transpose();
+    if (derivs) {
+      // T_{ijk} = int u_i u_j u_k / h^4 in the local basis (index 1 = sine).
+      const double c4 = c * c * c * c;
+      const double t30 = I(3, 0) / c4, t21 = I(2, 1) / c4, t12 = I(1, 2) / c4, t03 = I(0, 3) / c4;
+      M2 Tl;
+      Tl << Wl.x() * t30 + Wl.y() * t21, Wl.x() * t21 + Wl.y() * t12, Wl.x() * t21 + Wl.y() * t12,
+          Wl.x() * t12 + Wl.y() * t03;
+      T4W = Q * Tl * Q.transpose();
+    }
+  } else {
+    const double phiW = std::atan2(W.y(), W.x());
+    for (std::size_t k = 0; k < gl_x_.size(); ++k) {
+      const double phi = phiW + 0.5 * M_PI * gl_x_[k], wq = 0.5 * M_PI * gl_w_[k];
+      const V2 u(std::cos(phi), std::sin(phi));
+      const double h = c - e.dot(u);
+      const double ih3 = 1.0 / (h * h * h);
+      const M2 uu = u * u.transpose();
+      M3 += (wq * ih3) * uu;
+      if (derivs) T4W += (wq * W.dot(u) * ih3 / h) * uu;
+    }
+  }
+  r.f = -K * (M3 * W);
+  if (derivs) {
+    const M2 dW = -K * M3;  // d f / d W
+    r.df_ded = dW;
+    r.df_de = -3.0 * K * T4W + dW * (-0.5 * om * J2());
+    r.df_dom = dW * (-0.5 * perp(e));
+  }
+  return r;
+}
+
+void JournalBearing::fail_if_closed(double t, double e) const {
+  const double eps = e / p_.clearance;
+  if (!(eps < 1.0))
+    throw RunError("journal bearing '" + name() + "': film closed, eccentricity ratio " + fmt(eps) +
+                   " >= 1 at t = " + fmt(t) + " s");
+  if (eps > p_.eps_max && !(p_.contact_stiffness > 0.0))
+    throw RunError("journal bearing '" + name() + "': eccentricity ratio " + fmt(eps) +
+                   " >= eps_max = " + fmt(p_.eps_max) + " at t = " + fmt(t) +
+                   " s (film nearly closed; set contact_stiffness > 0 to model asperity contact)");
+}
+
+FilmForce JournalBearing::film(double t, const V2& e, const V2& ed, double om, double weight,
+                               bool derivs) const {
+  const double en = e.norm();
+  fail_if_closed(t, en);
+  FilmForce r = hydro(e, ed, om, weight, derivs, p_.closed_form);
+  const double e0 = p_.eps_max * p_.clearance;
+  if (en > e0 && p_.contact_stiffness > 0.0) {
+    const double kc = p_.contact_stiffness * weight, n = p_.contact_exponent;
+    const V2 nhat = e / en;
+    const double pen = en - e0, fc = kc * std::pow(pen, n);
+    r.f -= fc * nhat;
+    if (derivs) {
+      const double dfc = kc * n * std::pow(pen, n - 1.0);
+      r.df_de -=
+          dfc * nhat * nhat.transpose() + (fc / en) * (M2::Identity() - nhat * nhat.transpose());
+    }
+  }
+  return r;
+}
+
+void JournalBearing::station_state(const MarkerMotion* m, double s, V2& e, V2& ed,
+                                   double& om) const {
+  const Mat3& R0 = m[0].R;
+  const Vec3 a = R0.col(2);
+  Vec3 d = m[1].p - m[0].p;
+  Vec3 dd = m[1].v - m[0].v;
+  if (s != 0.0) {
+    const Vec3 ta = (m[1].psi - m[0].psi).cross(a);  // tilt of the journal axis
+    d += s * ta;
+    dd += s * ((m[1].w - m[0].w).cross(a) + m[1].w.cross(ta));
+  }
+  const Vec3 rel = dd - m[0].w.cross(d);
+  e = V2(R0.col(0).dot(d), R0.col(1).dot(d));
+  ed = V2(R0.col(0).dot(rel), R0.col(1).dot(rel));
+  om = (m[1].w - m[0].w).dot(a) + p_.journal_speed;
+}
+
+void JournalBearing::evaluate(double t, const MarkerMotion* m, MarkerLoad* loads) const {
+  const Mat3& R0 = m[0].R;
+  const Vec3 a = R0.col(2);
+  const Eigen::Matrix<double, 3, 2> P = R0.leftCols<2>();
+  Vec3 F = Vec3::Zero(), M = Vec3::Zero();
+  for (const auto& st : stations_) {
+    V2 e, ed;
+    double om;
+    station_state(m, st.s, e, ed, om);
+    const Vec3 Fs = P * film(t, e, ed, om, st.weight, false).f;
+    F += Fs;
+    M += st.s * a.cross(Fs);
+  }
+  loads[1].F = F;
+  loads[1].M = M;
+  loads[0].F = -F;
+  loads[0].M = -M - (m[1].p - m[0].p).cross(F);
+}
+
+void JournalBearing::derivatives(double t, const MarkerMotion* m, Mat& D) const {
+  const Mat3& R0 = m[0].R;
+  const Vec3 a = R0.col(2);
+  const Eigen::Matrix<double, 3, 2> P = R0.leftCols<2>();
+  const Mat3 Sa = skew(a), Sw0 = skew(m[0].w), Sw1 = skew(m[1].w);
+  // Column blocks of marker j: p at 12 j, v at 12 j + 3, psi at 12 j + 6, w at 12 j + 9.
+  Eigen::Matrix<double, 3, 24> DF = Eigen::Matrix<double, 3, 24>::Zero(), DM = DF;
+  Vec3 F = Vec3::Zero();
+  for (const auto& st : stations_) {
+    const double s = st.s;
+    V2 e, ed;
+    double om;
+    station_state(m, s, e, ed, om);
+    const FilmForce ff = film(t, e, ed, om, st.weight, true);
+    // Jacobians of d, dd (3 x 24) and om (1 x 24).
+    Eigen::Matrix<double, 3, 24> Jd = Eigen::Matrix<double, 3, 24>::Zero(), Jdd = Jd;
+    Eigen::Matrix<double, 1, 24> Jom = Eigen::Matrix<double, 1, 24>::Zero();
+    Jd.block<3, 3>(0, 0) = -Mat3::Identity();
+    Jd.block<3, 3>(0, 12) = Mat3::Identity();
+    Jdd.block<3, 3>(0, 3) = -Mat3::Identity();
+    Jdd.block<3, 3>(0, 15) = Mat3::Identity();
+    Vec3 d = m[1].p - m[0].p;
+    if (s != 0.0) {
+      const Vec3 ta = (m[1].psi - m[0].psi).cross(a);
+      d += s * ta;
+      // ta = -Sa theta, theta = psi1 - psi0
+      Jd.block<3, 3>(0, 18) = -s * Sa;
+      Jd.block<3, 3>(0, 6) = s * Sa;
+      // dd += s ((w1 - w0) x a + w1 x ta)
+      Jdd.block<3, 3>(0, 21) = -s * (Sa + skew(ta));
+      Jdd.block<3, 3>(0, 9) = s * Sa;
+      Jdd.block<3, 3>(0, 18) = -s * Sw1 * Sa;
+      Jdd.block<3, 3>(0, 6) = s * Sw1 * Sa;
+    }
+    // rel = dd - w0 x d
+    Eigen::Matrix<double, 3, 24> Jrel = Jdd - Sw0 * Jd;
+    Jrel.block<3, 3>(0, 9) += skew(d);
+    Jom.block<1, 3>(0, 21) = a.transpose();
+    Jom.block<1, 3>(0, 9) = -a.transpose();
+    const Eigen::Matrix<double, 2, 24> Df =
+        ff.df_de * (P.transpose() * Jd) + ff.df_ded * (P.transpose() * Jrel) + ff.df_dom * Jom;
+    const Eigen::Matrix<double, 3, 24> DFs = P * Df;
+    DF += DFs;
+    DM += s * Sa * DFs;
+    F += P * ff.f;
+  }
+  const Vec3 dp = m[1].p - m[0].p;
+  D.setZero(12, 24);
+  D.block<3, 24>(6, 0) = DF;
+  D.block<3, 24>(9, 0) = DM;
+  D.block<3, 24>(0, 0) = -DF;
+  // M0 = -M1 - dp x F1
+  D.block<3, 24>(3, 0) = -DM - skew(dp) * DF;
+  D.block<3, 3>(3, 12) += skew(F);
+  D.block<3, 3>(3, 0) -= skew(F);
+}
+
+double JournalBearing::peak_pressure(const V2& e, const V2& ed, double om) const {
+  const double c = p_.clearance;
+  const V2 W = ed - 0.5 * om * perp(e);
+  if (W.squaredNorm() == 0.0) return 0.0;
+  const double phiW = std::atan2(W.y(), W.x());
+  auto q = [&](double phi) {
+    const V2 u(std::cos(phi), std::sin(phi));
+    const double h = c - e.dot(u);
+    return W.dot(u) / (h * h * h);
+  };
+  // Coarse scan, then golden-section search in the best bracket.
+  const int n = 128;
+  const double dphi = M_PI / n;
+  int best = 0;
+  double qbest = -1.0;
+  for (int i = 0; i <= n; ++i) {
+    const double v = q(phiW - 0.5 * M_PI + i * dphi);
+    if (v > qbest) qbest = v, best = i;
+  }
+  double lo = phiW - 0.5 * M_PI + (best - 1) * dphi, hi = lo + 2.0 * dphi;
+  const double g = 0.5 * (std::sqrt(5.0) - 1.0);
+  double x1 = hi - g * (hi - lo), x2 = lo + g * (hi - lo), f1 = q(x1), f2 = q(x2);
+  for (int it = 0; it < 60; ++it) {
+    if (f1 > f2) {
+      hi = x2, x2 = x1, f2 = f1, x1 = hi - g * (hi - lo), f1 = q(x1);
+    } else {
+      lo = x1, x1 = x2, f1 = f2, x2 = lo + g * (hi - lo), f2 = q(x2);
+    }
+  }
+  // p = 6 eta x (B - x) q, largest at the mid-plane x = B/2.
+  return 1.5 * p_.viscosity * p_.width * p_.width * std::max({qbest, f1, f2});
+}
+
+std::vector<Channel> JournalBearing::channels() const {
+  return {{"fx", "N"},  {"fy", "N"},         {"mx", "N m"},  {"my", "N m"},
+          {"eps", "-"}, {"attitude", "rad"}, {"h_min", "m"}, {"p_max", "Pa"}};
+}
+
+void JournalBearing::channel_values(double t, const MarkerMotion* m, double* out) const {
+  MarkerLoad loads[2];
+  evaluate(t, m, loads);
+  const Mat3& R0 = m[0].R;
+  const Vec3 F = R0.transpose() * loads[1].F, M = R0.transpose() * loads[1].M;
+  V2 e, ed;
+  double om;
+  station_state(m, 0.0, e, ed, om);
+  double emax = 0.0;
+  for (const auto& st : stations_) {
+    V2 es, eds;
+    double oms;
+    station_state(m, st.s, es, eds, oms);
+    emax = std::max(emax, es.norm());
+  }
+  out[0] = F.x();
+  out[1] = F.y();
+  out[2] = M.x();
+  out[3] = M.y();
+  out[4] = e.norm() / p_.clearance;
+  out[5] = std::atan2(e.y(), e.x());
+  out[6] = p_.clearance - emax;
+  out[7] = peak_pressure(e, ed, om);
+}
+
+namespace {
+
+ParamSpec scalar(const std::string& key, const std::string& unit, const std::string& doc,
+                 bool required, double def, double min, double max = 1e300) {
+  ParamSpec p;
+  p.key = key;
+  p.kind = ParamSpec::Kind::Scalar;
+  p.unit = unit;
+  p.doc = doc;
+  p.required = required;
+  if (!required) p.default_value = {def};
+  p.min = min;
+  p.max = max;
+  return p;
+}
+
+}  // namespace
+
+ElementType journal_bearing_element_type() {
+  ElementType t;
+  t.type = "journal-bearing";
+  t.doc =
+      "Hydrodynamic journal bearing, short-bearing (Ocvirk) theory with the pi-film condition "
+      "(paper Eq. 3, Figs. 5-6). Marker 1 = bearing (its z axis is the bearing axis, x/y span "
+      "the bearing plane), marker 2 = journal centre. Film pressure p = 6 eta x (B - x) "
+      "(W . u) / h^3 with h = c - e . u and W = de/dt - (omega/2) J e, kept where positive; "
+      "force on the journal, reaction on the bearing. Relative spin omega = (w_journal - "
+      "w_bearing) . axis + journal_speed. Eccentricity ratio above eps_max: asperity contact "
+      "force k_c (e - eps_max c)^n if contact_stiffness > 0, else a run error; e >= c is "
+      "always an error. See docs/elements-journal-bearing.md.";
+  t.num_markers = 2;
+  ParamSpec method;
+  method.key = "method";
+  method.kind = ParamSpec::Kind::Text;
+  method.doc =
+      "film-force integral: 'ocvirk' = closed form (Sommerfeld substitution) over the "
+      "positive-pressure half circle, 'quadrature' = Gauss-Legendre with n_delta points";
+  method.choices = {"ocvirk", "quadrature"};
+  method.default_text = "ocvirk";
+  t.params = {
+      scalar("radius", "m", "journal radius R", true, 0.0, 1e-300),
+      scalar("width", "m", "bearing width B", true, 0.0, 1e-300),
+      scalar("clearance", "m", "radial clearance c", true, 0.0, 1e-300),
+      scalar("viscosity", "Pa s", "dynamic viscosity eta of the oil", true, 0.0, 0.0),
+      method,
+      scalar("n_delta", "-", "quadrature points in the circumferential direction (integer)", false,
+             64, 2, 4096),
+      scalar("halves", "-",
+             "1: one station; 2: two axial stations at +-B/(2 sqrt 5) (paper Fig. 6), a "
+             "tilted journal gets a moment",
+             false, 1, 1, 2),
+      scalar("eps_max", "-", "largest eccentricity ratio of the film alone", false, 0.98, 0.0,
+             0.999999),
+      scalar("contact_stiffness", "N/m^n",
+             "asperity contact coefficient k_c above eps_max (0: exceeding eps_max is an error)",
+             false, 0.0, 0.0),
+      scalar("contact_exponent", "-", "exponent n of the contact law", false, 1.5, 1.0, 10.0),
+      scalar("journal_speed", "rad/s",
+             "spin added to the relative spin (journal bodies that carry no rotation)", false, 0.0,
+             -1e300),
+  };
+  t.make = [](const std::string& name, const std::vector<int>& markers, const ParamValues& v) {
+    JournalBearingParams p;
+    p.radius = v.scalar("radius");
+    p.width = v.scalar("width");
+    p.clearance = v.scalar("clearance");
+    p.viscosity = v.scalar("viscosity");
+    p.closed_form = v.text("method") == "ocvirk";
+    const double nd = v.scalar("n_delta"), hv = v.scalar("halves");
+    if (nd != std::floor(nd))
+      throw InputError("journal bearing '" + name + "': parameter 'n_delta' = " + fmt(nd) +
+                       " must be an integer");
+    if (hv != 1.0 && hv != 2.0)
+      throw InputError("journal bearing '" + name + "': parameter 'halves' = " + fmt(hv) +
+                       " must be 1 or 2");
+    p.n_delta = static_cast<int>(nd);
+    p.halves = static_cast<int>(hv);
+    p.eps_max = v.scalar("eps_max");
+    p.contact_stiffness = v.scalar("contact_stiffness");
+    p.contact_exponent = v.scalar("contact_exponent");
+    p.journal_speed = v.scalar("journal_speed");
+    return std::make_unique<JournalBearing>(name, markers, p);
+  };
+  return t;
+}
+
+}  // namespace evas

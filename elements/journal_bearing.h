@@ -1,0 +1,115 @@
+// Hydrodynamic journal bearing, short-bearing (Ocvirk) theory with the
+// pi-film (half-Sommerfeld) condition: paper section 3.2, Eq. 3, Figs. 5-6;
+// formulation.md section 5; references.md section 1. Full derivation and the
+// sign conventions: docs/elements-journal-bearing.md.
+//
+// Markers: 0 = bearing (column 2 of its axes R0 is the bearing axis a,
+// columns 0/1 span the bearing plane, P = [x y]); 1 = journal centre.
+//
+// Kinematics (bearing plane, bearing-frame components):
+//   e   = P^T d,            d = p1 - p0                       (eccentricity vector)
+//   ed  = P^T (dd - w0 x d),  dd = v1 - v0                    (its rate seen by the bearing)
+//   om  = (w1 - w0) . a                                       (relative spin)
+// Reynolds' equation, short bearing, bearing angle phi, u(phi) = (cos, sin),
+// t(phi) = (-sin, cos), film h = c - e . u, surface speed sum om R:
+//   d/dx (h^3 dp/dx) = 6 eta om dh/dphi + 12 eta dh/dt = -12 eta g(phi),
+//   g(phi) = W . u(phi),   W = ed - (om/2) J e,   J = rotation by +90 deg,
+//   p(x, phi) = 6 eta x (B - x) g / h^3           (p = 0 at x = 0, B).
+// With delta measured from the line of maximum film in the direction of
+// rotation, h = c + e cos(delta) and g = (om/2 - gd) e sin(delta) - ed cos(delta):
+// this is Eq. 3 of the paper with the opposite overall sign (Eq. 3 as printed,
+// with x (x - B) <= 0, would give suction in the converging film).
+// pi-film: p is kept where g > 0, the half circle |phi - atan2(Wy, Wx)| < pi/2.
+// Force on the journal: F = -R int int p u dphi dx = -eta R B^3 int_{g>0} g u / h^3 dphi.
+//
+// Methods: "quadrature" (Gauss-Legendre with n_delta points on the positive
+// half circle; the parabolic axial factor is integrated exactly) and "ocvirk"
+// (the same integral in closed form via the Sommerfeld substitution; for
+// ed = 0 it reduces to references.md s.1).
+//
+// halves = 2 (paper Fig. 6): two axial stations at s = +-B/(2 sqrt 5) from the
+// journal marker, each with half the parabolic weight (the 2-point Gauss rule
+// for the weight x (B - x)). An aligned journal gets exactly the full-width
+// force; a journal tilted by theta = psi1 - psi0 (in-plane part) gets a moment.
+//
+// Extreme film: e >= c throws RunError (film closed). eps >= eps_max throws
+// RunError unless contact_stiffness > 0; then an asperity contact force
+//   F_c = -k_c (e - eps_max c)^n e/|e|      (n = contact_exponent)
+// is added on the journal (continuous at the onset; C1 for n > 1).
+#pragma once
+
+#include <array>
+
+#include "elements/element.h"
+#include "elements/registry.h"
+
+namespace evas {
+
+struct JournalBearingParams {
+  double radius = 0.0;     ///< journal radius R [m]
+  double width = 0.0;      ///< bearing width B [m]
+  double clearance = 0.0;  ///< radial clearance c [m]
+  double viscosity = 0.0;  ///< dynamic viscosity eta [Pa s]
+  bool closed_form = true;
+  int n_delta = 64;  ///< Gauss-Legendre points on the positive half circle
+  int halves = 1;    ///< 1 or 2 axial stations
+  double eps_max = 0.98;
+  double contact_stiffness = 0.0;  ///< k_c [N/m^n]
+  double contact_exponent = 1.5;   ///< n [-]
+  double journal_speed = 0.0;      ///< added to the relative spin [rad/s]
+};
+
+/// Film force of one station in the bearing plane (2-D, bearing components):
+/// force on the journal and its partial derivatives.
+struct FilmForce {
+  Eigen::Vector2d f = Eigen::Vector2d::Zero();
+  Eigen::Matrix2d df_de = Eigen::Matrix2d::Zero();   ///< d f / d e
+  Eigen::Matrix2d df_ded = Eigen::Matrix2d::Zero();  ///< d f / d edot
+  Eigen::Vector2d df_dom = Eigen::Vector2d::Zero();  ///< d f / d omega
+};
+
+class JournalBearing : public Element {
+ public:
+  JournalBearing(std::string name, std::vector<int> markers, const JournalBearingParams& p);
+  std::string type() const override { return "journal-bearing"; }
+  void evaluate(double t, const MarkerMotion* m, MarkerLoad* loads) const override;
+  void derivatives(double t, const MarkerMotion* m, Mat& D) const override;
+  std::vector<Channel> channels() const override;
+  void channel_values(double t, const MarkerMotion* m, double* out) const override;
+
+  const JournalBearingParams& params() const { return p_; }
+
+  /// Film force (hydrodynamic + contact) of a bearing of weight `weight` (1 =
+  /// full width) for eccentricity e, its rate ed, relative spin om, with
+  /// derivatives when `derivs`. Throws RunError for eps >= eps_max (no
+  /// contact) or e >= c. Public for tests.
+  FilmForce film(double t, const Eigen::Vector2d& e, const Eigen::Vector2d& ed, double om,
+                 double weight, bool derivs) const;
+  /// Hydrodynamic part only by the chosen method (no checks, no contact).
+  FilmForce hydro(const Eigen::Vector2d& e, const Eigen::Vector2d& ed, double om, double weight,
+                  bool derivs, bool closed_form) const;
+  /// Peak film pressure at the mid-plane for the state (e, ed, om) [Pa].
+  double peak_pressure(const Eigen::Vector2d& e, const Eigen::Vector2d& ed, double om) const;
+
+ private:
+  struct Station {
+    double s;       ///< axial offset from the journal marker [m]
+    double weight;  ///< share of the full-width parabolic weight
+  };
+  /// Kinematics of one station: e, ed, om (bearing components).
+  void station_state(const MarkerMotion* m, double s, Eigen::Vector2d& e, Eigen::Vector2d& ed,
+                     double& om) const;
+  void fail_if_closed(double t, double e) const;
+
+  JournalBearingParams p_;
+  std::vector<Station> stations_;
+  std::vector<double> gl_x_, gl_w_;  ///< Gauss-Legendre nodes/weights on [-1, 1]
+};
+
+/// Declaration of the "journal-bearing" element type (wired into registry.cpp).
+ElementType journal_bearing_element_type();
+
+/// Gauss-Legendre nodes and weights on [-1, 1] (n >= 1).
+void gauss_legendre(int n, std::vector<double>& x, std::vector<double>& w);
+
+}  // namespace evas

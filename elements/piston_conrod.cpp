@@ -1,0 +1,293 @@
+#include "elements/piston_conrod.h"
+
+#include <cmath>
+#include <sstream>
+
+namespace evas {
+
+namespace {
+constexpr double kRad = M_PI / 180.0;
+}
+
+// ---------------------------------------------------------------------------
+// Slider-crank kinematics.
+
+void SliderCrank::eval(double theta, double& x, double& dx, double& ddx) const {
+  const double s = std::sin(theta), c = std::cos(theta);
+  const double Lc = std::sqrt(L * L - R * R * s * s);  // L cos phi
+  x = R * c + Lc;
+  dx = -R * s - R * R * s * c / Lc;
+  ddx = -R * c - R * R * (c * c - s * s) / Lc - std::pow(R * R * s * c, 2) / (Lc * Lc * Lc);
+}
+
+double SliderCrank::acceleration(double theta, double w) const {
+  const double lam = R / L, s = std::sin(theta);
+  const double den = std::pow(1.0 - lam * lam * s * s, 1.5);
+  return -R * w * w *
+         (std::cos(theta) + (lam * std::cos(2 * theta) + lam * lam * lam * s * s * s * s) / den);
+}
+
+double SliderCrank::harmonic(int k) const {
+  const double l = R / L, l3 = l * l * l, l5 = l3 * l * l;
+  switch (k) {
+    case 1:
+      return l + l3 / 4 + 15 * l5 / 128;
+    case 2:
+      return -(l3 / 4 + 3 * l5 / 16);
+    case 3:
+      return 9 * l5 / 128;
+  }
+  return 0.0;
+}
+
+double SliderCrank::acceleration_series(double theta, double w, int kmax) const {
+  double sum = std::cos(theta);
+  for (int k = 1; k <= kmax; ++k) sum += harmonic(k) * std::cos(2 * k * theta);
+  return -R * w * w * sum;
+}
+
+// ---------------------------------------------------------------------------
+// Element.
+
+PistonConrod::PistonConrod(std::string name, std::vector<int> markers, const PistonConrodParams& p,
+                           std::shared_ptr<const PressureTable> gas)
+    : Element(std::move(name), std::move(markers)), p_(p), gas_(std::move(gas)) {
+  const std::string where = "piston-conrod '" + this->name() + "'";
+  if (this->markers().size() != 3)
+    throw InputError(where + ": needs 3 markers (crankpin, liner, head)");
+  if (!(p.crank_radius > 0 && p.conrod_length > p.crank_radius))
+    throw InputError(where + ": conrod_length must exceed crank_radius (got R = " +
+                     std::to_string(p.crank_radius) + " m, L = " + std::to_string(p.conrod_length) +
+                     " m)");
+  if (!(p.bore > 0)) throw InputError(where + ": bore must be positive");
+  if (!(p.piston_mass >= 0 && p.rec_mass >= 0 && p.rot_mass >= 0))
+    throw InputError(where + ": masses must not be negative");
+  if (!(p.friction_velocity > 0)) throw InputError(where + ": friction_velocity must be positive");
+  if (p.cylinder_axis.norm() == 0 || p.crank_axis.norm() == 0)
+    throw InputError(where + ": cylinder_axis and crank_axis must be non-zero");
+  ec_ = p.cylinder_axis.normalized();
+  ea_ = p.crank_axis.normalized();
+  if (std::abs(ec_.dot(ea_)) > 1e-3)
+    throw InputError(where + ": cylinder_axis must be perpendicular to crank_axis (cos = " +
+                     std::to_string(ec_.dot(ea_)) + ")");
+  ea_ = (ea_ - ec_.dot(ea_) * ec_).normalized();
+  es_ = ea_.cross(ec_);
+  sc_.R = p.crank_radius;
+  sc_.L = p.conrod_length;
+  const double lam = sc_.R / sc_.L;
+  // The closed-form friction solution needs mu tan(phi_max) < 1.
+  if (p.friction_coefficient * lam / std::sqrt(1 - lam * lam) >= 1.0)
+    throw InputError(where + ": friction_coefficient too large for this crank (mu tan phi >= 1)");
+  area_ = M_PI / 4 * p.bore * p.bore;
+  h_L_ = p.liner_height > 0 ? p.liner_height : p.conrod_length;
+}
+
+PistonConrod::State PistonConrod::state(double t) const {
+  State s;
+  const double w = p_.speed;
+  s.theta = w * t + (p_.initial_angle_deg - p_.firing_phase_deg) * kRad;
+  double x, dx, ddx;
+  sc_.eval(s.theta, x, dx, ddx);
+  s.x = x;
+  s.xd = dx * w;
+  // eq2: the paper's constant-speed two-term series (A2 ~ lambda), used consistently in
+  // the inertia, rod and side forces so that the element stays in equilibrium.
+  const double lam = sc_.R / sc_.L;
+  s.xdd = p_.eq2_side_force ? -sc_.R * w * w * (std::cos(s.theta) + lam * std::cos(2 * s.theta))
+                            : ddx * w * w;
+  s.p = gas_ ? (*gas_)(s.theta) - p_.crankcase_pressure : 0.0;
+  s.Fc = s.p * area_;
+  s.sin_phi = lam * std::sin(s.theta);
+  s.cos_phi = std::sqrt(1.0 - s.sin_phi * s.sin_phi);
+  const double tphi = s.sin_phi / s.cos_phi;
+  const double m = p_.piston_mass + p_.rec_mass;
+  // Friction on the piston F_f = -sg (F0 + mu |N|), N = (Fc + m xdd - F_f) tan phi:
+  // N = B + c |N| with B = (Fc + m xdd + sg F0) tan phi, c = sg mu tan phi, |c| < 1.
+  const double sg = std::tanh(s.xd / p_.friction_velocity);
+  const double B = (s.Fc + m * s.xdd + sg * p_.friction_force) * tphi;
+  const double c = sg * p_.friction_coefficient * tphi;
+  s.N = B >= 0 ? B / (1 - c) : B / (1 + c);
+  s.Ff = -sg * (p_.friction_force + p_.friction_coefficient * std::abs(s.N));
+  s.Fr = (s.Fc + m * s.xdd - s.Ff) / s.cos_phi;
+  const Vec3 u = s.cos_phi * ec_ - s.sin_phi * es_;
+  const Vec3 er = std::cos(s.theta) * ec_ + std::sin(s.theta) * es_;
+  s.F_pin_B = -s.Fr * u + p_.rot_mass * sc_.R * w * w * er;
+  return s;
+}
+
+void PistonConrod::evaluate(double t, const MarkerMotion* m, MarkerLoad* loads) const {
+  const State s = state(t);
+  const Mat3& R = m[1].R;  // block axes in G
+  loads[0].F = R * s.F_pin_B;
+  loads[0].M.setZero();
+  loads[1].F = R * (-s.N * es_ - s.Ff * ec_);
+  loads[1].M = R * ((s.x - h_L_) * ec_.cross(-s.N * es_));
+  loads[2].F = R * (s.Fc * ec_);
+  loads[2].M.setZero();
+}
+
+void PistonConrod::derivatives(double, const MarkerMotion*, Mat& D) const {
+  D.setZero();  // prescribed mode: loads are explicit in time
+}
+
+std::vector<Channel> PistonConrod::channels() const {
+  return {{"crank_angle", "deg"},    {"piston_position", "m"}, {"piston_acceleration", "m/s^2"},
+          {"gas_pressure", "Pa"},    {"gas_force", "N"},       {"side_force", "N"},
+          {"conrod_force", "N"},     {"friction_force", "N"},  {"crankpin_force_x", "N"},
+          {"crankpin_force_y", "N"}, {"crankpin_force_z", "N"}};
+}
+
+void PistonConrod::channel_values(double t, const MarkerMotion*, double* out) const {
+  const State s = state(t);
+  double a = std::fmod(s.theta / kRad, 720.0);
+  if (a < 0) a += 720.0;
+  out[0] = a;
+  out[1] = s.x;
+  out[2] = s.xdd;
+  out[3] = s.p;
+  out[4] = s.Fc;
+  out[5] = -s.N;
+  out[6] = s.Fr;
+  out[7] = s.Ff;
+  for (int i = 0; i < 3; ++i) out[8 + i] = s.F_pin_B[i];
+}
+
+// ---------------------------------------------------------------------------
+// Declaration.
+
+namespace {
+
+ParamSpec scalar(const std::string& key, const std::string& unit, const std::string& doc,
+                 bool required, double def, double min, double max = 1e300) {
+  ParamSpec p;
+  p.key = key;
+  p.kind = ParamSpec::Kind::Scalar;
+  p.unit = unit;
+  p.doc = doc;
+  p.required = required;
+  if (!required) p.default_value = {def};
+  p.min = min;
+  p.max = max;
+  return p;
+}
+
+ParamSpec vec3(const std::string& key, const std::string& doc, const Vec3& def) {
+  ParamSpec p;
+  p.key = key;
+  p.kind = ParamSpec::Kind::Vector3;
+  p.unit = "-";
+  p.doc = doc;
+  p.default_value = {def.x(), def.y(), def.z()};
+  return p;
+}
+
+ParamSpec text(const std::string& key, const std::string& doc, const std::string& def,
+               std::vector<std::string> choices = {}) {
+  ParamSpec p;
+  p.key = key;
+  p.kind = ParamSpec::Kind::Text;
+  p.doc = doc;
+  p.default_text = def;
+  p.choices = std::move(choices);
+  return p;
+}
+
+}  // namespace
+
+ElementType piston_conrod_element_type() {
+  ElementType t;
+  t.type = "piston-conrod";
+  t.doc =
+      "Piston and conrod of one cylinder (paper Fig. 4, Eq. 2). Markers: crankpin (crankshaft, "
+      "crankpin centre), liner (block, on the cylinder axis at liner_height from the crank axis; "
+      "give it rotation), head (block, on the cylinder axis). Block axes = liner marker axes. "
+      "Gas force F_c = (p(theta) - crankcase_pressure) A_p on the head; side force on the liner "
+      "(moved to the pin height by a moment); crankpin force along the rod plus m_2 R w^2. "
+      "theta = speed t + initial_angle - firing_phase (0 = firing TDC; the table's cycle angle). "
+      "Mode prescribed: explicit in time (paper Step 3). See docs/elements-piston-motor.md.";
+  t.num_markers = 3;
+  t.params = {
+      scalar("crank_radius", "m", "crank radius R (half the stroke)", true, 0, 1e-6),
+      scalar("conrod_length", "m", "conrod length L, pin to crankpin centres (> R)", true, 0, 1e-6),
+      scalar("bore", "m", "cylinder bore (piston area pi bore^2 / 4)", true, 0, 1e-6),
+      scalar("piston_mass", "kg", "piston with rings and pin, m_p", true, 0, 0.0),
+      scalar("conrod_reciprocating_mass", "kg", "conrod mass lumped at the pin, m_1", false, 0,
+             0.0),
+      scalar("conrod_rotating_mass", "kg", "conrod mass lumped at the crankpin, m_2", false, 0,
+             0.0),
+      vec3("cylinder_axis", "cylinder axis in block axes, from the crank axis towards the head",
+           Vec3::UnitZ()),
+      vec3("crank_axis",
+           "crank axis in block axes; positive crank rotation is right-handed about it",
+           Vec3::UnitX()),
+      scalar("firing_phase", "deg",
+             "crank angle at which this cylinder is at firing TDC (0..720; e.g. 0/180/540/360 for "
+             "an in-line four firing 1-3-4-2)",
+             false, 0, 0.0, 720.0),
+      text("mode",
+           "prescribed: theta = speed t + initial_angle (explicit in time); coupled: not "
+           "implemented yet",
+           "prescribed", {"prescribed", "coupled"}),
+      scalar("speed", "rad/s", "prescribed crank speed (3000 rpm = 314.159 rad/s)", true, 0, 0.0),
+      scalar("initial_angle", "deg", "crank angle at t = 0", false, 0, -1e6, 1e6),
+      text("pressure_file", "cylinder pressure table over 720 deg (empty: no gas force)", ""),
+      scalar("crankcase_pressure", "Pa",
+             "pressure below the piston, subtracted from the table (1e5 for an absolute table "
+             "with an atmospheric crankcase)",
+             false, 0, 0.0),
+      text("side_force",
+           "exact: exact piston acceleration; eq2: the paper's two-term series "
+           "(Eq. 2, constant speed)",
+           "exact", {"exact", "eq2"}),
+      scalar("friction_coefficient", "-", "piston-liner friction coefficient mu (F_f = mu |N|)",
+             false, 0, 0.0, 1.0),
+      scalar("friction_force", "N", "constant piston friction force F_0 (added to mu |N|)", false,
+             0, 0.0),
+      scalar("friction_velocity", "m/s",
+             "smoothing speed v_s: friction = -tanh(piston velocity / v_s) (F_0 + mu |N|)", false,
+             0.05, 1e-9),
+      scalar("liner_height", "m",
+             "height of the liner marker above the crank axis along the cylinder axis "
+             "(0: conrod_length, the middle of the pin's travel)",
+             false, 0, 0.0),
+  };
+  t.make = [](const std::string& name, const std::vector<int>& markers, const ParamValues& v) {
+    const std::string where = "piston-conrod '" + name + "'";
+    if (v.text("mode") == "coupled")
+      throw InputError(where +
+                       ": mode 'coupled' is not implemented yet (it needs the crank's "
+                       "angular acceleration and an implicit reciprocating inertia); use "
+                       "mode 'prescribed'");
+    PistonConrodParams p;
+    p.crank_radius = v.scalar("crank_radius");
+    p.conrod_length = v.scalar("conrod_length");
+    p.bore = v.scalar("bore");
+    p.piston_mass = v.scalar("piston_mass");
+    p.rec_mass = v.scalar("conrod_reciprocating_mass");
+    p.rot_mass = v.scalar("conrod_rotating_mass");
+    p.cylinder_axis = v.vec3("cylinder_axis");
+    p.crank_axis = v.vec3("crank_axis");
+    p.firing_phase_deg = v.scalar("firing_phase");
+    p.speed = v.scalar("speed");
+    p.initial_angle_deg = v.scalar("initial_angle");
+    p.crankcase_pressure = v.scalar("crankcase_pressure");
+    p.eq2_side_force = v.text("side_force") == "eq2";
+    p.friction_coefficient = v.scalar("friction_coefficient");
+    p.friction_force = v.scalar("friction_force");
+    p.friction_velocity = v.scalar("friction_velocity");
+    p.liner_height = v.scalar("liner_height");
+    std::shared_ptr<const PressureTable> gas;
+    const std::string& file = v.text("pressure_file");
+    if (!file.empty()) {
+      try {
+        gas = std::make_shared<const PressureTable>(PressureTable::read(file));
+      } catch (const InputError& e) {
+        throw InputError(where + ": " + e.what());
+      }
+    }
+    return std::make_unique<PistonConrod>(name, markers, p, std::move(gas));
+  };
+  return t;
+}
+
+}  // namespace evas

@@ -1,0 +1,114 @@
+// Piston-conrod element (paper Fig. 4, Eq. 2; formulation.md section 5).
+//
+// One cylinder: piston (mass m_p), conrod as two lumped masses (m_1 at the
+// piston pin, reciprocating; m_2 at the crankpin, rotating), gas pressure
+// from a 720 deg table. Markers (all loads in G components):
+//   0  crankpin   on the crankshaft, at the crankpin centre
+//   1  liner      on the block, on the cylinder axis at height h_L from the
+//                 crank axis (parameter liner_height); should carry rotation
+//   2  head       on the block, on the cylinder axis (the gas force acts here)
+// Block axes are marker 1's axes (MarkerMotion::R); the cylinder axis e_c
+// (crank -> head) and the crank axis e_a are given in block axes; e_s = e_a x e_c.
+// Crank angle of this cylinder theta = theta_crank - firing_phase, 0 at its
+// firing TDC, increasing in the right-hand sense about e_a; the crankpin sits
+// at R (cos theta e_c + sin theta e_s) from the crank axis.
+//
+// Kinematics (lambda = R/L): sin phi = lambda sin theta,
+//   x_p = R cos theta + L cos phi (pin height above the crank axis along e_c).
+// Piston (with m_1), equilibrium along e_c and e_s, rod force F_r along the rod
+// (compression positive), liner normal force N on the piston along e_s:
+//   (m_p + m_1) xdd_p = -F_c + F_r cos phi + F_f,     N = F_r sin phi
+//   => F_r = (F_c + m xdd_p - F_f) / cos phi,  N = (F_c + m xdd_p - F_f) tan phi
+// Side force on the liner F_s = -N (paper Eq. 2 sign: with the two-term series
+// xdd_p = -R w^2 (cos theta + lambda cos 2 theta) and F_f = 0 it is Eq. 2).
+// Friction on the piston F_f = -tanh(xd_p / v_s) (F_0 + mu |N|), solved in
+// closed form with N.
+// Loads:
+//   crankpin  F = -F_r u + m_2 R w^2 e_r  (u = cos phi e_c - sin phi e_s: crankpin -> pin)
+//   liner     F = -N e_s - F_f e_c,  M = (x_p - h_L) e_c x (-N e_s)  (moves N to the pin)
+//   head      F = F_c e_c
+// Modes: `prescribed` (the paper's Step 3): theta_crank = w t + theta_0, loads
+// explicit in time, state_dependent() false, D = 0. `coupled` is rejected by
+// the factory (not implemented: it needs the crank's angular acceleration and
+// an implicit reciprocating inertia).
+#pragma once
+
+#include <memory>
+
+#include "elements/element.h"
+#include "elements/gas_pressure.h"
+#include "elements/registry.h"
+
+namespace evas {
+
+/// Slider-crank kinematics (references.md section 2).
+struct SliderCrank {
+  double R = 0.0;  ///< crank radius [m]
+  double L = 0.0;  ///< conrod length [m]
+  /// Pin height x_p and its first and second derivatives w.r.t. theta.
+  void eval(double theta, double& x, double& dx, double& ddx) const;
+  /// Exact piston acceleration at constant speed w (references.md s.2 closed form).
+  double acceleration(double theta, double w) const;
+  /// Fourier series of the acceleration truncated after cos(2k theta), k <= kmax (1..3):
+  /// -R w^2 (cos theta + A2 cos 2theta + A4 cos 4theta + A6 cos 6theta).
+  double acceleration_series(double theta, double w, int kmax) const;
+  /// Series coefficients A2, A4, A6 (references.md s.2), index 1..3.
+  double harmonic(int k) const;
+};
+
+struct PistonConrodParams {
+  double crank_radius = 0.058;         ///< R [m]
+  double conrod_length = 0.19;         ///< L [m]
+  double bore = 0.106;                 ///< [m]
+  double piston_mass = 1.0;            ///< m_p [kg]
+  double rec_mass = 0.0;               ///< m_1, conrod share at the pin [kg]
+  double rot_mass = 0.0;               ///< m_2, conrod share at the crankpin [kg]
+  Vec3 cylinder_axis = Vec3::UnitZ();  ///< block axes, crank -> head
+  Vec3 crank_axis = Vec3::UnitX();     ///< block axes, positive rotation sense
+  double firing_phase_deg = 0.0;
+  double speed = 0.0;              ///< prescribed crank speed w [rad/s]
+  double initial_angle_deg = 0.0;  ///< crank angle at t = 0 [deg]
+  bool eq2_side_force = false;     ///< use the paper's two-term acceleration series
+  double friction_coefficient = 0.0;
+  double friction_force = 0.0;      ///< constant part F_0 [N]
+  double friction_velocity = 0.05;  ///< smoothing speed v_s of the sign [m/s]
+  double crankcase_pressure = 0.0;  ///< subtracted from the table [Pa]
+  double liner_height = 0.0;        ///< h_L [m]; <= 0: L (middle of the pin's travel)
+};
+
+class PistonConrod : public Element {
+ public:
+  /// `gas` may be null (no gas force). Throws InputError on inconsistent geometry.
+  PistonConrod(std::string name, std::vector<int> markers, const PistonConrodParams& p,
+               std::shared_ptr<const PressureTable> gas);
+  std::string type() const override { return "piston-conrod"; }
+  void evaluate(double t, const MarkerMotion* m, MarkerLoad* loads) const override;
+  void derivatives(double t, const MarkerMotion* m, Mat& D) const override;
+  bool state_dependent() const override { return false; }
+  std::vector<Channel> channels() const override;
+  void channel_values(double t, const MarkerMotion* m, double* out) const override;
+
+  /// Everything the element computes at one instant (block axes where noted).
+  struct State {
+    double theta = 0.0;                            ///< cylinder crank angle [rad], 0 = firing TDC
+    double x = 0.0, xd = 0.0, xdd = 0.0;           ///< pin height, velocity, acceleration (used)
+    double p = 0.0;                                ///< gas pressure minus crankcase [Pa]
+    double Fc = 0.0, Fr = 0.0, N = 0.0, Ff = 0.0;  ///< gas, rod, liner normal, friction [N]
+    double sin_phi = 0.0, cos_phi = 1.0;
+    Vec3 F_pin_B = Vec3::Zero();  ///< crankpin load, block axes [N]
+  };
+  State state(double t) const;
+  const PistonConrodParams& params() const { return p_; }
+
+ private:
+  PistonConrodParams p_;
+  std::shared_ptr<const PressureTable> gas_;
+  SliderCrank sc_;
+  Vec3 ec_, ea_, es_;  // block axes
+  double area_, h_L_;
+};
+
+/// Declaration for the registry ("piston-conrod").
+ElementType piston_conrod_element_type();
+
+}  // namespace evas

@@ -1,0 +1,51 @@
+// Private helpers shared by all integrators in this folder (not a public header).
+#pragma once
+
+#include <chrono>
+#include <cmath>
+#include <iomanip>
+#include <memory>
+#include <sstream>
+#include <string>
+
+#include "integrators/integrator.h"
+
+namespace evas {
+
+// Factories behind make_integrator (registry.cpp), one per source file.
+std::unique_ptr<Integrator> make_ida_integrator();
+std::unique_ptr<Integrator> make_cvode_integrator();
+std::unique_ptr<Integrator> make_generalized_alpha_integrator();
+std::unique_ptr<Integrator> make_linear_acceleration_integrator();
+
+/// Track the smallest and largest accepted step.
+inline void note_step(IntegratorStats& s, double h) {
+  h = std::abs(h);
+  if (h <= 0.0) return;
+  if (s.min_step == 0.0 || h < s.min_step) s.min_step = h;
+  if (h > s.max_step) s.max_step = h;
+}
+
+/// Adds the wall time of a scope to a running total (steady clock).
+class WallTimer {
+ public:
+  explicit WallTimer(double& acc) : acc_(acc), start_(std::chrono::steady_clock::now()) {}
+  ~WallTimer() {
+    acc_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  }
+  WallTimer(const WallTimer&) = delete;
+  WallTimer& operator=(const WallTimer&) = delete;
+
+ private:
+  double& acc_;
+  std::chrono::steady_clock::time_point start_;
+};
+
+/// A number with enough digits to locate a failure ("0.0123456789").
+inline std::string format_number(double x) {
+  std::ostringstream os;
+  os << std::setprecision(10) << x;
+  return os.str();
+}
+
+}  // namespace evas

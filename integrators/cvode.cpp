@@ -1,0 +1,249 @@
+// CVODE (SUNDIALS 6.4) on the explicit first-order form
+//     yd = g(t, y) = [ v ; -f(t, q, v) ],   y = [q; v]
+// method "bdf":   CV_BDF + Newton (CVODE's default nonlinear solver) with the
+//                 analytic Jacobian dg/dy = [0, I; -K, -C], KLU or dense LU;
+// method "adams": CV_ADAMS + fixed-point iteration (no Jacobian, non-stiff runs).
+//
+// Stepping, landing on stops and dense output work as in ida.cpp: CV_ONE_STEP
+// inside advance(), CVodeSetStopTime for stops (and for the next stop of the
+// problem when not landing), CVodeGetDky for interpolated outputs.
+#include <cvode/cvode.h>
+#include <cvode/cvode_ls.h>
+#include <sunnonlinsol/sunnonlinsol_fixedpoint.h>
+
+#include <cmath>
+#include <memory>
+#include <string>
+
+#include "integrators/common.h"
+#include "integrators/sundials_util.h"
+#include "solver/first_order.h"
+
+namespace evas {
+namespace {
+
+class CvodeIntegrator final : public Integrator {
+ public:
+  CvodeIntegrator() = default;
+  ~CvodeIntegrator() override { free_memory(); }
+  CvodeIntegrator(const CvodeIntegrator&) = delete;
+  CvodeIntegrator& operator=(const CvodeIntegrator&) = delete;
+
+  std::string name() const override { return "cvode"; }
+
+  void init(Problem& p, double t0, const Vec& q0, const Vec& v0,
+            const IntegratorSettings& s) override {
+    free_memory();
+    if (s.method != "bdf" && s.method != "adams")
+      throw InputError("cvode: method '" + s.method + "' is unknown (use bdf or adams)");
+    p_ = &p;
+    s_ = s;
+    n_ = p.size();
+    newton_ = s.method == "bdf";
+    total_ = IntegratorStats{};
+    form_ = std::make_unique<FirstOrderForm>(p);
+    J_ = form_->rhs_pattern();
+
+    y_.create(2 * n_, ctx_);
+    ytmp_.create(2 * n_, ctx_);
+    set_state(q0, v0);
+
+    mem_ = CVodeCreate(newton_ ? CV_BDF : CV_ADAMS, ctx_);
+    if (!mem_) throw RunError("cvode: CVodeCreate failed");
+    check(CVodeSetErrHandlerFn(mem_, &CvodeIntegrator::error_cb, this), "CVodeSetErrHandlerFn");
+    check(CVodeInit(mem_, &CvodeIntegrator::rhs_cb, t0, y_.get()), "CVodeInit");
+    check(CVodeSStolerances(mem_, s.rtol, s.atol), "CVodeSStolerances");
+    check(CVodeSetUserData(mem_, this), "CVodeSetUserData");
+    if (newton_) {
+      ls_.create(s.linear_solver, J_, y_.get(), ctx_);
+      check(CVodeSetLinearSolver(mem_, ls_.solver(), ls_.matrix()), "CVodeSetLinearSolver");
+      check(CVodeSetJacFn(mem_, &CvodeIntegrator::jacobian_cb), "CVodeSetJacFn");
+    } else {
+      nls_.set(SUNNonlinSol_FixedPoint(y_.get(), 0, ctx_));
+      if (!nls_.get()) throw RunError("cvode: SUNNonlinSol_FixedPoint failed");
+      check(CVodeSetNonlinearSolver(mem_, nls_.get()), "CVodeSetNonlinearSolver");
+    }
+    if (s.max_step > 0.0) check(CVodeSetMaxStep(mem_, s.max_step), "CVodeSetMaxStep");
+    check(CVodeSetMaxNumSteps(mem_, s.max_steps), "CVodeSetMaxNumSteps");
+    t_ = t0;
+  }
+
+  void advance(double tout, bool land, Vec& q, Vec& v) override {
+    WallTimer timer(total_.wall_seconds);
+    if (!mem_) throw RunError("cvode: advance() before init()");
+    last_error_.clear();
+    if (!(tout > t_)) {
+      throw RunError("cvode: output time " + format_number(tout) + " s is not after " +
+                     format_number(t_) + " s");
+    }
+    double tn = current_time();
+    const double tstop = land ? tout : p_->next_stop(t_);
+    if (std::isfinite(tstop) && tstop > tn)
+      check(CVodeSetStopTime(mem_, tstop), "CVodeSetStopTime");
+
+    bool exact = false;  // y_ holds the solution at exactly tout
+    long steps = 0;
+    while (tn < tout) {
+      double tret = tn;
+      const int flag = CVode(mem_, tout, y_.get(), &tret, CV_ONE_STEP);
+      if (flag < 0) fail(CVodeGetReturnFlagName(flag));
+      double h = 0.0;
+      CVodeGetLastStep(mem_, &h);
+      note_step(total_, h);
+      tn = current_time();
+      if (flag == CV_TSTOP_RETURN && tret == tout) {
+        exact = true;
+        break;
+      }
+      if (++steps > s_.max_steps) fail("more than max_steps steps to reach the output");
+    }
+    if (!exact) {
+      const int flag = CVodeGetDky(mem_, tout, 0, ytmp_.get());
+      if (flag < 0) fail(CVodeGetReturnFlagName(flag));
+      get_state(ytmp_.data(), q, v);
+    } else {
+      get_state(y_.data(), q, v);
+    }
+    t_ = tout;
+  }
+
+  void restart(double t, const Vec& q, const Vec& v) override {
+    WallTimer timer(total_.wall_seconds);
+    if (!mem_) throw RunError("cvode: restart() before init()");
+    // CVodeReInit resets CVODE's counters: bank them first.
+    sundials::add_segment(total_, segment());
+    ++total_.restarts;
+    set_state(q, v);
+    check(CVodeReInit(mem_, t, y_.get()), "CVodeReInit");
+    t_ = t;
+  }
+
+  IntegratorStats stats() const override {
+    IntegratorStats out = total_;
+    if (!mem_) return out;
+    sundials::add_segment(out, segment());
+    double h = 0.0;
+    int order = 0;
+    CVodeGetLastStep(mem_, &h);
+    CVodeGetLastOrder(mem_, &order);
+    out.last_step = h;
+    out.last_order = order;
+    return out;
+  }
+
+ private:
+  void set_state(const Vec& q, const Vec& v) {
+    double* y = y_.data();
+    for (int i = 0; i < n_; ++i) {
+      y[i] = q[i];
+      y[n_ + i] = v[i];
+    }
+  }
+
+  void get_state(const double* y, Vec& q, Vec& v) const {
+    q.resize(n_);
+    v.resize(n_);
+    for (int i = 0; i < n_; ++i) {
+      q[i] = y[i];
+      v[i] = y[n_ + i];
+    }
+  }
+
+  double current_time() const {
+    double tn = t_;
+    CVodeGetCurrentTime(mem_, &tn);
+    return tn;
+  }
+
+  // Counters since the last CVodeInit/CVodeReInit.
+  IntegratorStats segment() const {
+    IntegratorStats s;
+    long nni = 0;
+    CVodeGetNumSteps(mem_, &s.steps);
+    CVodeGetNumRhsEvals(mem_, &s.residual_evals);
+    if (newton_) {
+      long nfe_ls = 0;  // rhs evaluations for FD Jacobians: 0 with the analytic one
+      CVodeGetNumLinRhsEvals(mem_, &nfe_ls);
+      s.residual_evals += nfe_ls;
+      CVodeGetNumJacEvals(mem_, &s.jacobian_evals);
+    }
+    CVodeGetNumLinSolvSetups(mem_, &s.linear_setups);
+    CVodeGetNumNonlinSolvIters(mem_, &nni);
+    s.nonlinear_iterations = nni;
+    s.linear_solves = newton_ ? nni : 0;  // direct solver: one solve per Newton iteration
+    CVodeGetNumErrTestFails(mem_, &s.error_test_failures);
+    CVodeGetNumNonlinSolvConvFails(mem_, &s.convergence_failures);
+    return s;
+  }
+
+  void check(int flag, const char* what) {
+    if (flag < 0) {
+      throw RunError(std::string("cvode: ") + what + " failed with " +
+                     CVodeGetReturnFlagName(flag) +
+                     (last_error_.empty() ? "" : " (" + last_error_ + ")"));
+    }
+  }
+
+  [[noreturn]] void fail(const std::string& why) {
+    const double tn = current_time();
+    std::string msg = "cvode (" + s_.method + "): " + why + " at t = " + format_number(tn) + " s";
+    if (!last_error_.empty()) msg += " (" + last_error_ + ")";
+    const std::string cb = guard_.take_message();
+    if (!cb.empty()) msg += "; model error: " + cb;
+    const double* y = y_.data();
+    if (CVodeGetDky(mem_, tn, 0, ytmp_.get()) == CV_SUCCESS) y = ytmp_.data();
+    msg += "; state: " + p_->describe_state(tn, y, y + n_);
+    throw RunError(msg);
+  }
+
+  void free_memory() {
+    if (mem_) CVodeFree(&mem_);
+    mem_ = nullptr;
+    nls_.reset();
+    ls_.reset();
+  }
+
+  static int rhs_cb(realtype t, N_Vector y, N_Vector yd, void* user) {
+    auto* self = static_cast<CvodeIntegrator*>(user);
+    return self->guard_.run(
+        [&] { self->form_->rhs(t, N_VGetArrayPointer(y), N_VGetArrayPointer(yd)); });
+  }
+
+  static int jacobian_cb(realtype t, N_Vector y, N_Vector /*fy*/, SUNMatrix J, void* user, N_Vector,
+                         N_Vector, N_Vector) {
+    auto* self = static_cast<CvodeIntegrator*>(user);
+    return self->guard_.run([&] {
+      self->form_->rhs_jacobian(t, N_VGetArrayPointer(y), self->J_);
+      self->ls_.copy(self->J_, J);
+    });
+  }
+
+  static void error_cb(int /*code*/, const char* module, const char* function, char* msg,
+                       void* user) {
+    auto* self = static_cast<CvodeIntegrator*>(user);
+    self->last_error_ = std::string(module) + "/" + function + ": " + msg;
+  }
+
+  // Declaration order matters: the context outlives everything created in it.
+  sundials::Context ctx_;
+  sundials::Vector y_, ytmp_;
+  sundials::LinearSystem ls_;
+  sundials::NonlinearSolver nls_;
+  std::unique_ptr<FirstOrderForm> form_;
+  SpMat J_;
+  Problem* p_ = nullptr;
+  IntegratorSettings s_;
+  bool newton_ = true;
+  void* mem_ = nullptr;
+  int n_ = 0;
+  double t_ = 0.0;
+  IntegratorStats total_;
+  sundials::CallbackGuard guard_;
+  std::string last_error_;
+};
+
+}  // namespace
+
+std::unique_ptr<Integrator> make_cvode_integrator() { return std::make_unique<CvodeIntegrator>(); }
+
+}  // namespace evas

@@ -1,0 +1,201 @@
+// Private helpers shared by the SUNDIALS adapters (ida.cpp, cvode.cpp): RAII
+// owners for SUNDIALS objects, the copy of an Eigen Jacobian into a SUNMatrix,
+// and the bookkeeping common to both adaptive integrators. Not part of the
+// public interface: nothing outside integrators/ includes this file.
+#pragma once
+
+#include <nvector/nvector_serial.h>
+#include <sundials/sundials_context.h>
+#include <sundials/sundials_linearsolver.h>
+#include <sundials/sundials_matrix.h>
+#include <sundials/sundials_nonlinearsolver.h>
+#include <sunlinsol/sunlinsol_dense.h>
+#include <sunlinsol/sunlinsol_klu.h>
+#include <sunmatrix/sunmatrix_dense.h>
+#include <sunmatrix/sunmatrix_sparse.h>
+
+#include <algorithm>
+#include <exception>
+#include <string>
+#include <vector>
+
+#include "integrators/common.h"
+
+namespace evas {
+namespace sundials {
+
+/// One SUNContext per integrator instance.
+class Context {
+ public:
+  Context() {
+    if (SUNContext_Create(nullptr, &ctx_) != 0) throw RunError("SUNContext_Create failed");
+  }
+  ~Context() { SUNContext_Free(&ctx_); }
+  Context(const Context&) = delete;
+  Context& operator=(const Context&) = delete;
+  operator SUNContext() const { return ctx_; }
+
+ private:
+  SUNContext ctx_ = nullptr;
+};
+
+/// Owner of a serial N_Vector.
+class Vector {
+ public:
+  Vector() = default;
+  ~Vector() { reset(); }
+  Vector(const Vector&) = delete;
+  Vector& operator=(const Vector&) = delete;
+  void create(int n, SUNContext ctx) {
+    reset();
+    v_ = N_VNew_Serial(n, ctx);
+    if (!v_) throw RunError("N_VNew_Serial failed");
+  }
+  void reset() {
+    if (v_) N_VDestroy(v_);
+    v_ = nullptr;
+  }
+  N_Vector get() const { return v_; }
+  double* data() const { return N_VGetArrayPointer(v_); }
+
+ private:
+  N_Vector v_ = nullptr;
+};
+
+/// The matrix and direct linear solver of a Newton iteration, chosen by name
+/// ("klu": CSC sparse + KLU, "dense": dense + LAPACK-free dense LU), together
+/// with the copy of an Eigen matrix of fixed pattern into it.
+///
+/// Index arrays: SUNDIALS zeroes the whole sparse matrix (indices included,
+/// SUNMatZero_Sparse) before every Jacobian call, so the CSC index arrays are
+/// converted to sunindextype once here and copied back (memcpy-sized, no
+/// allocation) together with the values on each call. The pattern never
+/// changes, so KLU's first setup does the symbolic analysis and every later
+/// setup only refactors numerically (SUNLinSol_KLU reuses its symbolic data).
+class LinearSystem {
+ public:
+  LinearSystem() = default;
+  ~LinearSystem() { reset(); }
+  LinearSystem(const LinearSystem&) = delete;
+  LinearSystem& operator=(const LinearSystem&) = delete;
+
+  void create(const std::string& kind, const SpMat& pattern, N_Vector y, SUNContext ctx) {
+    reset();
+    const auto n = static_cast<sunindextype>(pattern.rows());
+    if (kind == "klu") {
+      sparse_ = true;
+      const auto nnz = static_cast<sunindextype>(pattern.nonZeros());
+      A_ = SUNSparseMatrix(n, n, nnz, CSC_MAT, ctx);
+      if (!A_) throw RunError("SUNSparseMatrix failed");
+      colptr_.assign(pattern.outerIndexPtr(), pattern.outerIndexPtr() + pattern.cols() + 1);
+      rowind_.assign(pattern.innerIndexPtr(), pattern.innerIndexPtr() + pattern.nonZeros());
+      LS_ = SUNLinSol_KLU(y, A_, ctx);
+    } else if (kind == "dense") {
+      sparse_ = false;
+      A_ = SUNDenseMatrix(n, n, ctx);
+      if (!A_) throw RunError("SUNDenseMatrix failed");
+      LS_ = SUNLinSol_Dense(y, A_, ctx);
+    } else {
+      throw InputError("integrator: linear_solver '" + kind + "' is unknown (use klu or dense)");
+    }
+    if (!LS_) throw RunError("creating the " + kind + " linear solver failed");
+  }
+
+  /// Copy J (with the pattern given to create()) into the SUNMatrix A.
+  void copy(const SpMat& J, SUNMatrix A) const {
+    if (sparse_) {
+      std::copy(colptr_.begin(), colptr_.end(), SUNSparseMatrix_IndexPointers(A));
+      std::copy(rowind_.begin(), rowind_.end(), SUNSparseMatrix_IndexValues(A));
+      std::copy(J.valuePtr(), J.valuePtr() + J.nonZeros(), SUNSparseMatrix_Data(A));
+    } else {
+      SUNMatZero(A);
+      for (int c = 0; c < J.outerSize(); ++c) {
+        double* col = SUNDenseMatrix_Column(A, c);
+        for (SpMat::InnerIterator it(J, c); it; ++it) col[it.row()] = it.value();
+      }
+    }
+  }
+
+  void reset() {
+    if (LS_) SUNLinSolFree(LS_);
+    if (A_) SUNMatDestroy(A_);
+    LS_ = nullptr;
+    A_ = nullptr;
+  }
+
+  SUNMatrix matrix() const { return A_; }
+  SUNLinearSolver solver() const { return LS_; }
+
+ private:
+  bool sparse_ = true;
+  SUNMatrix A_ = nullptr;
+  SUNLinearSolver LS_ = nullptr;
+  std::vector<sunindextype> colptr_, rowind_;
+};
+
+/// Owner of a nonlinear solver (CVODE Adams + fixed point).
+class NonlinearSolver {
+ public:
+  NonlinearSolver() = default;
+  ~NonlinearSolver() { reset(); }
+  NonlinearSolver(const NonlinearSolver&) = delete;
+  NonlinearSolver& operator=(const NonlinearSolver&) = delete;
+  void set(SUNNonlinearSolver s) {
+    reset();
+    s_ = s;
+  }
+  void reset() {
+    if (s_) SUNNonlinSolFree(s_);
+    s_ = nullptr;
+  }
+  SUNNonlinearSolver get() const { return s_; }
+
+ private:
+  SUNNonlinearSolver s_ = nullptr;
+};
+
+/// Exceptions must not cross the C callbacks: a callback stores what it caught
+/// here and returns a failure flag; the adapter rethrows after the solver
+/// returns.
+struct CallbackGuard {
+  std::exception_ptr error;
+  template <class F>
+  int run(F&& f) noexcept {
+    try {
+      f();
+      return 0;
+    } catch (...) {
+      error = std::current_exception();
+      return -1;  // unrecoverable: stop the integrator
+    }
+  }
+  /// Message of the stored exception ("" if none) and clear it.
+  std::string take_message() {
+    if (!error) return {};
+    std::string msg;
+    try {
+      std::rethrow_exception(error);
+    } catch (const std::exception& e) {
+      msg = e.what();
+    } catch (...) {
+      msg = "unknown exception";
+    }
+    error = nullptr;
+    return msg;
+  }
+};
+
+/// Add the counters of a finished segment (before a ReInit) to a running total.
+inline void add_segment(IntegratorStats& total, const IntegratorStats& seg) {
+  total.steps += seg.steps;
+  total.residual_evals += seg.residual_evals;
+  total.jacobian_evals += seg.jacobian_evals;
+  total.linear_setups += seg.linear_setups;
+  total.linear_solves += seg.linear_solves;
+  total.nonlinear_iterations += seg.nonlinear_iterations;
+  total.error_test_failures += seg.error_test_failures;
+  total.convergence_failures += seg.convergence_failures;
+}
+
+}  // namespace sundials
+}  // namespace evas

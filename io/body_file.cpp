@@ -1,0 +1,262 @@
+#include "io/body_file.h"
+
+#include <cmath>
+#include <set>
+
+#include "io/hdf5_util.h"
+
+namespace evas {
+
+namespace {
+
+using RowMat = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+
+std::string shape_text(const std::vector<hsize_t>& dims) {
+  std::string s = "(";
+  for (std::size_t i = 0; i < dims.size(); ++i) s += (i ? " x " : "") + std::to_string(dims[i]);
+  return s + (dims.size() == 1 ? ",)" : ")");
+}
+
+void expect_shape(const std::string& name, const std::vector<hsize_t>& dims,
+                  const std::vector<hsize_t>& want) {
+  if (dims != want)
+    throw h5::Failure("dataset '" + name + "' has shape " + shape_text(dims) + ", expected " +
+                      shape_text(want));
+}
+
+void expect_finite(const std::string& name, const std::vector<double>& v) {
+  for (std::size_t i = 0; i < v.size(); ++i)
+    if (!std::isfinite(v[i]))
+      throw h5::Failure("dataset '" + name + "' has a non-finite value at flat index " +
+                        std::to_string(i));
+}
+
+bool is_diagonal(const SpMat& M) {
+  for (int k = 0; k < M.outerSize(); ++k)
+    for (SpMat::InnerIterator it(M, k); it; ++it)
+      if (it.row() != it.col() && it.value() != 0.0) return false;
+  return true;
+}
+
+void write_body(hid_t file, const ModalBody& body) {
+  const int N = body.num_nodes();
+  const int n = body.num_modes();
+  const hsize_t uN = static_cast<hsize_t>(N), un = static_cast<hsize_t>(n);
+  h5::write_attribute(file, "format", std::string(kBodyFormat));
+  h5::write_attribute(file, "version", static_cast<long long>(kBodyFormatVersion));
+  h5::write_attribute(file, "name", body.name);
+  h5::write_attribute(file, "length_unit", std::string("m"));
+  h5::write_attribute(file, "mass_unit", std::string("kg"));
+
+  {
+    h5::Handle g = h5::create_group(file, "nodes");
+    std::vector<long long> ids(body.node_ids.begin(), body.node_ids.end());
+    h5::write_int64s(g, "ids", {uN}, ids.data());
+    RowMat s = body.s;
+    h5::write_doubles(g, "coordinates", {uN, 3}, s.data());
+  }
+  {
+    h5::Handle g = h5::create_group(file, "mass");
+    if (is_diagonal(body.mass)) {
+      Vec d = body.mass.diagonal();
+      h5::write_doubles(g, "lumped", {uN}, d.data());
+    } else {
+      Eigen::SparseMatrix<double, Eigen::RowMajor, int> csr = body.mass;
+      csr.makeCompressed();
+      h5::Handle c = h5::create_group(g, "consistent");
+      std::vector<long long> indptr(csr.outerIndexPtr(), csr.outerIndexPtr() + N + 1);
+      std::vector<long long> indices(csr.innerIndexPtr(), csr.innerIndexPtr() + csr.nonZeros());
+      h5::write_int64s(c, "indptr", {uN + 1}, indptr.data());
+      h5::write_int64s(c, "indices", {static_cast<hsize_t>(indices.size())}, indices.data());
+      h5::write_doubles(c, "values", {static_cast<hsize_t>(indices.size())}, csr.valuePtr());
+    }
+  }
+  {
+    h5::Handle g = h5::create_group(file, "modes");
+    h5::write_doubles(g, "eigenvalues", {un}, body.eigenvalues.data());
+    RowMat shapes = body.modes;
+    h5::write_doubles(g, "shapes", {3 * uN, un}, shapes.data());
+    h5::write_doubles(g, "damping", {un}, body.damping.data());
+    std::vector<int> kinds;
+    for (ModeKind k : body.kinds) kinds.push_back(static_cast<int>(k));
+    h5::write_int32s(g, "kind", {un}, kinds.data());
+  }
+  {
+    h5::Handle g = h5::create_group(file, "sets");
+    for (const auto& [name, ids] : body.node_sets) {
+      std::vector<long long> v(ids.begin(), ids.end());
+      h5::write_int64s(g, name, {static_cast<hsize_t>(v.size())}, v.data());
+    }
+  }
+}
+
+ModalBody read_body(hid_t file) {
+  ModalBody body;
+  if (!h5::has_attribute(file, "format"))
+    throw h5::Failure("attribute 'format' is missing (not an evas modal-body file)");
+  const std::string format = h5::read_string_attribute(file, "format");
+  if (format != kBodyFormat)
+    throw h5::Failure("attribute 'format' is '" + format + "', expected '" + kBodyFormat + "'");
+  const long long version = h5::read_int_attribute(file, "version");
+  if (version != kBodyFormatVersion)
+    throw h5::Failure("attribute 'version' is " + std::to_string(version) +
+                      ", this evas reads version " + std::to_string(kBodyFormatVersion));
+  body.name = h5::read_string_attribute(file, "name");
+  if (h5::has_attribute(file, "length_unit")) {
+    const std::string u = h5::read_string_attribute(file, "length_unit");
+    if (u != "m")
+      throw h5::Failure("attribute 'length_unit' is '" + u + "', only 'm' is supported");
+  }
+  if (h5::has_attribute(file, "mass_unit")) {
+    const std::string u = h5::read_string_attribute(file, "mass_unit");
+    if (u != "kg")
+      throw h5::Failure("attribute 'mass_unit' is '" + u + "', only 'kg' is supported");
+  }
+
+  // Nodes.
+  std::vector<hsize_t> dims;
+  const std::vector<long long> ids = h5::read_int64s(file, "/nodes/ids", dims);
+  if (dims.size() != 1)
+    throw h5::Failure("dataset '/nodes/ids' has shape " + shape_text(dims) + ", expected (N,)");
+  const hsize_t N = dims[0];
+  body.node_ids.assign(ids.begin(), ids.end());
+  {
+    std::set<long> seen;
+    for (long id : body.node_ids)
+      if (!seen.insert(id).second)
+        throw h5::Failure("dataset '/nodes/ids' repeats node id " + std::to_string(id));
+  }
+  const std::vector<double> xyz = h5::read_doubles(file, "/nodes/coordinates", dims);
+  expect_shape("/nodes/coordinates", dims, {N, 3});
+  expect_finite("/nodes/coordinates", xyz);
+  body.s = Eigen::Map<const RowMat>(xyz.data(), static_cast<Eigen::Index>(N), 3);
+
+  // Mass.
+  const int iN = static_cast<int>(N);
+  body.mass.resize(iN, iN);
+  if (h5::exists(file, "/mass/lumped")) {
+    const std::vector<double> m = h5::read_doubles(file, "/mass/lumped", dims);
+    expect_shape("/mass/lumped", dims, {N});
+    expect_finite("/mass/lumped", m);
+    std::vector<Triplet> trips;
+    for (int i = 0; i < iN; ++i) {
+      if (m[i] < 0.0)
+        throw h5::Failure("dataset '/mass/lumped' has a negative mass at node " +
+                          std::to_string(body.node_ids[i]));
+      trips.emplace_back(i, i, m[i]);
+    }
+    body.mass.setFromTriplets(trips.begin(), trips.end());
+  } else if (h5::exists(file, "/mass/consistent")) {
+    const std::vector<long long> indptr = h5::read_int64s(file, "/mass/consistent/indptr", dims);
+    expect_shape("/mass/consistent/indptr", dims, {N + 1});
+    const std::vector<long long> indices = h5::read_int64s(file, "/mass/consistent/indices", dims);
+    if (dims.size() != 1)
+      throw h5::Failure("dataset '/mass/consistent/indices' must be one-dimensional");
+    const hsize_t nnz = dims[0];
+    const std::vector<double> values = h5::read_doubles(file, "/mass/consistent/values", dims);
+    expect_shape("/mass/consistent/values", dims, {nnz});
+    expect_finite("/mass/consistent/values", values);
+    if (indptr[0] != 0 || indptr[N] != static_cast<long long>(nnz))
+      throw h5::Failure("dataset '/mass/consistent/indptr' must start at 0 and end at " +
+                        std::to_string(nnz) + " (the number of values)");
+    std::vector<Triplet> trips;
+    for (hsize_t r = 0; r < N; ++r) {
+      if (indptr[r + 1] < indptr[r])
+        throw h5::Failure("dataset '/mass/consistent/indptr' decreases at row " +
+                          std::to_string(r));
+      for (long long k = indptr[r]; k < indptr[r + 1]; ++k) {
+        if (indices[k] < 0 || indices[k] >= static_cast<long long>(N))
+          throw h5::Failure("dataset '/mass/consistent/indices' has column " +
+                            std::to_string(indices[k]) + " outside 0.." + std::to_string(N - 1));
+        trips.emplace_back(static_cast<int>(r), static_cast<int>(indices[k]), values[k]);
+      }
+    }
+    body.mass.setFromTriplets(trips.begin(), trips.end());
+  } else {
+    throw h5::Failure(
+        "mass is missing: expected dataset '/mass/lumped' or group '/mass/consistent'");
+  }
+  body.mass.makeCompressed();
+
+  // Modes.
+  const std::vector<double> lambda = h5::read_doubles(file, "/modes/eigenvalues", dims);
+  if (dims.size() != 1)
+    throw h5::Failure("dataset '/modes/eigenvalues' has shape " + shape_text(dims) +
+                      ", expected (n,)");
+  const hsize_t n = dims[0];
+  expect_finite("/modes/eigenvalues", lambda);
+  body.eigenvalues = Eigen::Map<const Vec>(lambda.data(), static_cast<Eigen::Index>(n));
+  const std::vector<double> shapes = h5::read_doubles(file, "/modes/shapes", dims);
+  expect_shape("/modes/shapes", dims, {3 * N, n});
+  expect_finite("/modes/shapes", shapes);
+  body.modes = Eigen::Map<const RowMat>(shapes.data(), static_cast<Eigen::Index>(3 * N),
+                                        static_cast<Eigen::Index>(n));
+  const std::vector<double> damping = h5::read_doubles(file, "/modes/damping", dims);
+  expect_shape("/modes/damping", dims, {n});
+  expect_finite("/modes/damping", damping);
+  body.damping = Eigen::Map<const Vec>(damping.data(), static_cast<Eigen::Index>(n));
+  const std::vector<long long> kinds = h5::read_int64s(file, "/modes/kind", dims);
+  expect_shape("/modes/kind", dims, {n});
+  for (hsize_t k = 0; k < n; ++k) {
+    if (kinds[k] != 0 && kinds[k] != 1)
+      throw h5::Failure("dataset '/modes/kind' has value " + std::to_string(kinds[k]) +
+                        " for mode " + std::to_string(k) + " (0 rigid, 1 elastic)");
+    body.kinds.push_back(kinds[k] == 0 ? ModeKind::Rigid : ModeKind::Elastic);
+  }
+
+  // Node sets (optional group).
+  if (h5::exists(file, "/sets")) {
+    h5::Handle g = h5::open_group(file, "/sets");
+    std::set<long> known(body.node_ids.begin(), body.node_ids.end());
+    for (const std::string& name : h5::list_links(g)) {
+      const std::string path = "/sets/" + name;
+      const std::vector<long long> set = h5::read_int64s(file, path, dims);
+      if (dims.size() != 1) throw h5::Failure("dataset '" + path + "' must be one-dimensional");
+      for (long long id : set)
+        if (!known.count(id))
+          throw h5::Failure("dataset '" + path + "' names node " + std::to_string(id) +
+                            ", which is not in '/nodes/ids'");
+      body.node_sets[name].assign(set.begin(), set.end());
+    }
+  }
+  return body;
+}
+
+}  // namespace
+
+void write_body_file(const std::string& path, const ModalBody& body) {
+  try {
+    body.validate();
+  } catch (const InputError& e) {
+    throw InputError(path + ": cannot write body: " + e.what());
+  }
+  h5::Quiet quiet;
+  try {
+    h5::Handle file = h5::create_file(path);
+    write_body(file, body);
+    if (H5Fflush(file, H5F_SCOPE_GLOBAL) < 0) throw h5::Failure("cannot flush the file");
+  } catch (const h5::Failure& e) {
+    throw InputError(path + ": " + e.what());
+  }
+}
+
+ModalBody read_body_file(const std::string& path) {
+  ModalBody body;
+  {
+    h5::Quiet quiet;
+    try {
+      h5::Handle file = h5::open_file(path);
+      body = read_body(file);
+    } catch (const h5::Failure& e) {
+      throw InputError(path + ": " + e.what());
+    }
+  }
+  try {
+    body.validate();
+  } catch (const InputError& e) {
+    throw InputError(path + ": " + e.what());
+  }
+  return body;
+}
+
+}  // namespace evas

@@ -1,0 +1,355 @@
+#include "io/hdf5_util.h"
+
+#include <algorithm>
+#include <cstring>
+
+namespace evas::h5 {
+
+namespace {
+
+constexpr hsize_t kCompressMinElements = 256;
+constexpr hsize_t kChunkElements = 16384;
+
+std::string dset_name(const std::string& name) { return "dataset '" + name + "'"; }
+std::string attr_name(const std::string& name) { return "attribute '" + name + "'"; }
+
+Handle string_type() {
+  Handle t(H5Tcopy(H5T_C_S1), H5Tclose);
+  H5Tset_size(t, H5T_VARIABLE);
+  H5Tset_cset(t, H5T_CSET_UTF8);
+  return t;
+}
+
+bool deflate_available() {
+  static const bool avail =
+      H5Zfilter_avail(H5Z_FILTER_DEFLATE) > 0 && H5Zfilter_avail(H5Z_FILTER_SHUFFLE) > 0;
+  return avail;
+}
+
+Handle dataset_props(const std::vector<hsize_t>& dims) {
+  Handle plist(H5Pcreate(H5P_DATASET_CREATE), H5Pclose);
+  hsize_t total = 1;
+  for (hsize_t d : dims) total *= d;
+  if (total >= kCompressMinElements && deflate_available()) {
+    std::vector<hsize_t> chunk(dims);
+    hsize_t inner = 1;
+    for (std::size_t i = 1; i < dims.size(); ++i) inner *= dims[i];
+    chunk[0] = std::max<hsize_t>(1, std::min<hsize_t>(dims[0], kChunkElements / inner));
+    H5Pset_chunk(plist, static_cast<int>(chunk.size()), chunk.data());
+    H5Pset_shuffle(plist);
+    H5Pset_deflate(plist, 4);
+  }
+  return plist;
+}
+
+void write_raw(hid_t loc, const std::string& name, const std::vector<hsize_t>& dims,
+               hid_t file_type, hid_t mem_type, const void* data) {
+  Handle space(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr), H5Sclose);
+  Handle plist = dataset_props(dims);
+  Handle dset(H5Dcreate2(loc, name.c_str(), file_type, space, H5P_DEFAULT, plist, H5P_DEFAULT),
+              H5Dclose);
+  if (!dset.valid()) throw Failure("cannot create " + dset_name(name));
+  hsize_t total = 1;
+  for (hsize_t d : dims) total *= d;
+  if (total > 0 && H5Dwrite(dset, mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data) < 0)
+    throw Failure("cannot write " + dset_name(name));
+}
+
+Handle open_dataset(hid_t loc, const std::string& name) {
+  if (!exists(loc, name)) throw Failure(dset_name(name) + " is missing");
+  Handle dset(H5Dopen2(loc, name.c_str(), H5P_DEFAULT), H5Dclose);
+  if (!dset.valid()) throw Failure(dset_name(name) + " cannot be opened (not a dataset?)");
+  return dset;
+}
+
+std::vector<hsize_t> dataset_dims(hid_t dset, const std::string& name) {
+  Handle space(H5Dget_space(dset), H5Sclose);
+  const int rank = H5Sget_simple_extent_ndims(space);
+  if (rank < 0) throw Failure(dset_name(name) + " has an unreadable shape");
+  std::vector<hsize_t> dims(static_cast<std::size_t>(rank));
+  if (rank > 0) H5Sget_simple_extent_dims(space, dims.data(), nullptr);
+  return dims;
+}
+
+template <class T>
+std::vector<T> read_numeric(hid_t loc, const std::string& name, std::vector<hsize_t>& dims,
+                            hid_t mem_type, bool integer_only) {
+  Handle dset = open_dataset(loc, name);
+  Handle type(H5Dget_type(dset), H5Tclose);
+  const H5T_class_t cls = H5Tget_class(type);
+  if (integer_only ? cls != H5T_INTEGER : (cls != H5T_FLOAT && cls != H5T_INTEGER))
+    throw Failure(dset_name(name) + " has the wrong type (expected " +
+                  (integer_only ? "integers" : "numbers") + ")");
+  dims = dataset_dims(dset, name);
+  hsize_t total = 1;
+  for (hsize_t d : dims) total *= d;
+  std::vector<T> out(static_cast<std::size_t>(total));
+  if (total > 0 && H5Dread(dset, mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()) < 0)
+    throw Failure(dset_name(name) + " cannot be read (file truncated or corrupt?)");
+  return out;
+}
+
+Handle open_attribute(hid_t obj, const std::string& name) {
+  if (H5Aexists(obj, name.c_str()) <= 0) throw Failure(attr_name(name) + " is missing");
+  Handle a(H5Aopen(obj, name.c_str(), H5P_DEFAULT), H5Aclose);
+  if (!a.valid()) throw Failure(attr_name(name) + " cannot be opened");
+  return a;
+}
+
+herr_t collect_link(hid_t, const char* name, const H5L_info_t*, void* data) {
+  static_cast<std::vector<std::string>*>(data)->emplace_back(name);
+  return 0;
+}
+
+}  // namespace
+
+Handle& Handle::operator=(Handle&& o) noexcept {
+  if (this != &o) {
+    reset();
+    id_ = o.id_;
+    close_ = o.close_;
+    o.id_ = -1;
+  }
+  return *this;
+}
+
+void Handle::reset() {
+  if (id_ >= 0 && close_) close_(id_);
+  id_ = -1;
+}
+
+Quiet::Quiet() {
+  H5Eget_auto2(H5E_DEFAULT, &func_, &data_);
+  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+}
+
+Quiet::~Quiet() { H5Eset_auto2(H5E_DEFAULT, func_, data_); }
+
+Handle create_file(const std::string& path) {
+  Handle f(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), H5Fclose);
+  if (!f.valid()) throw Failure("cannot create the file (directory missing or not writable?)");
+  return f;
+}
+
+Handle open_file(const std::string& path, bool writable) {
+  const htri_t is = H5Fis_hdf5(path.c_str());
+  if (is < 0) throw Failure("cannot open the file (missing or unreadable)");
+  if (is == 0) throw Failure("not an HDF5 file");
+  Handle f(H5Fopen(path.c_str(), writable ? H5F_ACC_RDWR : H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose);
+  if (!f.valid()) throw Failure("cannot open the HDF5 file (truncated or corrupt?)");
+  return f;
+}
+
+Handle create_group(hid_t loc, const std::string& name) {
+  Handle g(H5Gcreate2(loc, name.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose);
+  if (!g.valid()) throw Failure("cannot create group '" + name + "'");
+  return g;
+}
+
+Handle open_group(hid_t loc, const std::string& name) {
+  if (!exists(loc, name)) throw Failure("group '" + name + "' is missing");
+  Handle g(H5Gopen2(loc, name.c_str(), H5P_DEFAULT), H5Gclose);
+  if (!g.valid()) throw Failure("'" + name + "' cannot be opened as a group");
+  return g;
+}
+
+bool exists(hid_t loc, const std::string& path) {
+  std::size_t pos = 0;
+  while (pos <= path.size()) {
+    std::size_t next = path.find('/', pos);
+    if (next == std::string::npos) next = path.size();
+    if (next > pos) {
+      const std::string prefix = path.substr(0, next);
+      if (H5Lexists(loc, prefix.c_str(), H5P_DEFAULT) <= 0) return false;
+    }
+    pos = next + 1;
+  }
+  return true;
+}
+
+bool has_attribute(hid_t obj, const std::string& name) { return H5Aexists(obj, name.c_str()) > 0; }
+
+std::vector<std::string> list_links(hid_t group) {
+  std::vector<std::string> names;
+  H5Literate(group, H5_INDEX_NAME, H5_ITER_INC, nullptr, collect_link, &names);
+  return names;
+}
+
+void write_attribute(hid_t obj, const std::string& name, const std::string& value) {
+  if (H5Aexists(obj, name.c_str()) > 0) H5Adelete(obj, name.c_str());
+  Handle type = string_type();
+  Handle space(H5Screate(H5S_SCALAR), H5Sclose);
+  Handle a(H5Acreate2(obj, name.c_str(), type, space, H5P_DEFAULT, H5P_DEFAULT), H5Aclose);
+  const char* p = value.c_str();
+  if (!a.valid() || H5Awrite(a, type, &p) < 0) throw Failure("cannot write " + attr_name(name));
+}
+
+void write_attribute(hid_t obj, const std::string& name, long long value) {
+  if (H5Aexists(obj, name.c_str()) > 0) H5Adelete(obj, name.c_str());
+  Handle space(H5Screate(H5S_SCALAR), H5Sclose);
+  Handle a(H5Acreate2(obj, name.c_str(), H5T_STD_I64LE, space, H5P_DEFAULT, H5P_DEFAULT), H5Aclose);
+  if (!a.valid() || H5Awrite(a, H5T_NATIVE_LLONG, &value) < 0)
+    throw Failure("cannot write " + attr_name(name));
+}
+
+void write_attribute(hid_t obj, const std::string& name, double value) {
+  if (H5Aexists(obj, name.c_str()) > 0) H5Adelete(obj, name.c_str());
+  Handle space(H5Screate(H5S_SCALAR), H5Sclose);
+  Handle a(H5Acreate2(obj, name.c_str(), H5T_IEEE_F64LE, space, H5P_DEFAULT, H5P_DEFAULT),
+           H5Aclose);
+  if (!a.valid() || H5Awrite(a, H5T_NATIVE_DOUBLE, &value) < 0)
+    throw Failure("cannot write " + attr_name(name));
+}
+
+std::string read_string_attribute(hid_t obj, const std::string& name) {
+  Handle a = open_attribute(obj, name);
+  Handle ftype(H5Aget_type(a), H5Tclose);
+  if (H5Tget_class(ftype) != H5T_STRING) throw Failure(attr_name(name) + " is not a string");
+  Handle space(H5Aget_space(a), H5Sclose);
+  if (H5Sget_simple_extent_npoints(space) != 1)
+    throw Failure(attr_name(name) + " must be a single string");
+  if (H5Tis_variable_str(ftype) > 0) {
+    Handle mtype = string_type();
+    char* p = nullptr;
+    if (H5Aread(a, mtype, &p) < 0) throw Failure(attr_name(name) + " cannot be read");
+    std::string s = p ? p : "";
+    H5free_memory(p);
+    return s;
+  }
+  const std::size_t size = H5Tget_size(ftype);
+  Handle mtype(H5Tcopy(H5T_C_S1), H5Tclose);
+  H5Tset_size(mtype, size + 1);
+  std::vector<char> buf(size + 1, '\0');
+  if (H5Aread(a, mtype, buf.data()) < 0) throw Failure(attr_name(name) + " cannot be read");
+  return std::string(buf.data());
+}
+
+long long read_int_attribute(hid_t obj, const std::string& name) {
+  Handle a = open_attribute(obj, name);
+  Handle ftype(H5Aget_type(a), H5Tclose);
+  if (H5Tget_class(ftype) != H5T_INTEGER) throw Failure(attr_name(name) + " is not an integer");
+  long long v = 0;
+  if (H5Aread(a, H5T_NATIVE_LLONG, &v) < 0) throw Failure(attr_name(name) + " cannot be read");
+  return v;
+}
+
+double read_double_attribute(hid_t obj, const std::string& name) {
+  Handle a = open_attribute(obj, name);
+  Handle ftype(H5Aget_type(a), H5Tclose);
+  const H5T_class_t cls = H5Tget_class(ftype);
+  if (cls != H5T_FLOAT && cls != H5T_INTEGER) throw Failure(attr_name(name) + " is not a number");
+  double v = 0;
+  if (H5Aread(a, H5T_NATIVE_DOUBLE, &v) < 0) throw Failure(attr_name(name) + " cannot be read");
+  return v;
+}
+
+void write_doubles(hid_t loc, const std::string& name, const std::vector<hsize_t>& dims,
+                   const double* data) {
+  write_raw(loc, name, dims, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, data);
+}
+
+void write_int64s(hid_t loc, const std::string& name, const std::vector<hsize_t>& dims,
+                  const long long* data) {
+  write_raw(loc, name, dims, H5T_STD_I64LE, H5T_NATIVE_LLONG, data);
+}
+
+void write_int32s(hid_t loc, const std::string& name, const std::vector<hsize_t>& dims,
+                  const int* data) {
+  write_raw(loc, name, dims, H5T_STD_I32LE, H5T_NATIVE_INT, data);
+}
+
+void write_strings(hid_t loc, const std::string& name, const std::vector<std::string>& values) {
+  Handle type = string_type();
+  const hsize_t n = values.size();
+  Handle space(H5Screate_simple(1, &n, nullptr), H5Sclose);
+  Handle dset(H5Dcreate2(loc, name.c_str(), type, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
+              H5Dclose);
+  if (!dset.valid()) throw Failure("cannot create " + dset_name(name));
+  std::vector<const char*> ptrs;
+  for (const auto& v : values) ptrs.push_back(v.c_str());
+  if (n > 0 && H5Dwrite(dset, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, ptrs.data()) < 0)
+    throw Failure("cannot write " + dset_name(name));
+}
+
+std::vector<double> read_doubles(hid_t loc, const std::string& name, std::vector<hsize_t>& dims) {
+  return read_numeric<double>(loc, name, dims, H5T_NATIVE_DOUBLE, false);
+}
+
+std::vector<long long> read_int64s(hid_t loc, const std::string& name, std::vector<hsize_t>& dims) {
+  return read_numeric<long long>(loc, name, dims, H5T_NATIVE_LLONG, true);
+}
+
+std::vector<std::string> read_strings(hid_t loc, const std::string& name) {
+  Handle dset = open_dataset(loc, name);
+  Handle ftype(H5Dget_type(dset), H5Tclose);
+  if (H5Tget_class(ftype) != H5T_STRING) throw Failure(dset_name(name) + " is not a string list");
+  const std::vector<hsize_t> dims = dataset_dims(dset, name);
+  if (dims.size() != 1) throw Failure(dset_name(name) + " must be one-dimensional");
+  const std::size_t n = dims[0];
+  std::vector<std::string> out;
+  if (n == 0) return out;
+  if (H5Tis_variable_str(ftype) > 0) {
+    Handle mtype = string_type();
+    std::vector<char*> ptrs(n, nullptr);
+    if (H5Dread(dset, mtype, H5S_ALL, H5S_ALL, H5P_DEFAULT, ptrs.data()) < 0)
+      throw Failure(dset_name(name) + " cannot be read");
+    for (char* p : ptrs) {
+      out.emplace_back(p ? p : "");
+      H5free_memory(p);
+    }
+    return out;
+  }
+  const std::size_t size = H5Tget_size(ftype);
+  Handle mtype(H5Tcopy(H5T_C_S1), H5Tclose);
+  H5Tset_size(mtype, size);
+  std::vector<char> buf(n * size, '\0');
+  if (H5Dread(dset, mtype, H5S_ALL, H5S_ALL, H5P_DEFAULT, buf.data()) < 0)
+    throw Failure(dset_name(name) + " cannot be read");
+  for (std::size_t i = 0; i < n; ++i) {
+    const char* p = buf.data() + i * size;
+    out.emplace_back(p, strnlen(p, size));
+  }
+  return out;
+}
+
+Handle create_extendible(hid_t loc, const std::string& name, int rank, hsize_t cols,
+                         hsize_t chunk_rows) {
+  hsize_t dims[2] = {0, cols};
+  hsize_t maxdims[2] = {H5S_UNLIMITED, cols};
+  hsize_t chunk[2] = {std::max<hsize_t>(1, chunk_rows), std::max<hsize_t>(1, cols)};
+  Handle space(H5Screate_simple(rank, dims, maxdims), H5Sclose);
+  Handle plist(H5Pcreate(H5P_DATASET_CREATE), H5Pclose);
+  H5Pset_chunk(plist, rank, chunk);
+  if (deflate_available()) {
+    H5Pset_shuffle(plist);
+    H5Pset_deflate(plist, 4);
+  }
+  Handle dset(H5Dcreate2(loc, name.c_str(), H5T_IEEE_F64LE, space, H5P_DEFAULT, plist, H5P_DEFAULT),
+              H5Dclose);
+  if (!dset.valid()) throw Failure("cannot create " + dset_name(name));
+  return dset;
+}
+
+void append_rows(hid_t dset, hsize_t cols, hsize_t rows, const double* data) {
+  if (rows == 0) return;
+  hsize_t cur[2] = {0, 0};
+  int rank = 0;
+  {
+    Handle space(H5Dget_space(dset), H5Sclose);
+    rank = H5Sget_simple_extent_ndims(space);
+    if (rank < 1 || rank > 2)
+      throw Failure("cannot append to a dataset of rank " + std::to_string(rank));
+    H5Sget_simple_extent_dims(space, cur, nullptr);
+  }
+  hsize_t newdims[2] = {cur[0] + rows, cols};
+  if (H5Dset_extent(dset, newdims) < 0) throw Failure("cannot extend a dataset");
+  Handle fspace(H5Dget_space(dset), H5Sclose);
+  hsize_t start[2] = {cur[0], 0};
+  hsize_t count[2] = {rows, cols};
+  H5Sselect_hyperslab(fspace, H5S_SELECT_SET, start, nullptr, count, nullptr);
+  Handle mspace(H5Screate_simple(rank, count, nullptr), H5Sclose);
+  if (H5Dwrite(dset, H5T_NATIVE_DOUBLE, mspace, fspace, H5P_DEFAULT, data) < 0)
+    throw Failure("cannot write rows to a dataset");
+}
+
+}  // namespace evas::h5

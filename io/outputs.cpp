@@ -1,0 +1,121 @@
+#include "io/outputs.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace evas {
+
+namespace {
+constexpr double kDeg = 180.0 / M_PI;
+}
+
+std::vector<double> crank_angle_times(const Lof& lof, double t0, double t1, double step_deg,
+                                      double start_deg, bool start_given) {
+  std::vector<double> times;
+  const double a0 = lof.spin_angle(t0) * kDeg, a1 = lof.spin_angle(t1) * kDeg;
+  if (!(step_deg > 0.0) || a1 == a0) return times;
+  const double dir = a1 > a0 ? 1.0 : -1.0;
+  // g increases along the run; targets are g-values start, start + step, ...
+  auto g = [&](double t) { return dir * lof.spin_angle(t) * kDeg; };
+  const double g0 = dir * a0, g1 = dir * a1;
+  double target;
+  if (start_given) {
+    target = dir * start_deg;
+    if (target < g0) target += std::ceil((g0 - target) / step_deg - 1e-9) * step_deg;
+  } else {
+    target = std::ceil(g0 / step_deg - 1e-9) * step_deg;
+  }
+  double lo = t0;
+  for (long k = 0; target <= g1 + 1e-9 * step_deg; ++k) {
+    double a = lo, b = t1;
+    if (g(a) >= target) {
+      times.push_back(a);
+    } else {
+      for (int it = 0; it < 200 && b - a > 1e-15 * std::max(1.0, std::abs(b)); ++it) {
+        const double m = 0.5 * (a + b);
+        (g(m) < target ? a : b) = m;
+      }
+      times.push_back(std::min(b, t1));
+    }
+    lo = times.back();
+    target += step_deg;
+    if (k > 100000000) break;
+  }
+  // Strictly ascending (rounding can repeat a time when step is tiny).
+  times.erase(std::unique(times.begin(), times.end()), times.end());
+  return times;
+}
+
+OutputSet::OutputSet(const OutputSpec& spec, System& system, double t_start, double t_end)
+    : sys_(system) {
+  Model& model = sys_.model();
+  if (spec.grid == "crank-angle") {
+    crank_body_ = model.find_body(spec.crank_body);
+    channels_.push_back({"crank_angle", "deg"});
+    times_ = crank_angle_times(model.bodies()[crank_body_].lof, t_start, t_end, spec.step,
+                               spec.start, spec.start_given);
+  } else {
+    const double start = spec.start_given ? spec.start : t_start;
+    if (!(spec.step > 0.0)) throw InputError("output: step must be > 0");
+    const double span = t_end - start;
+    const long count = static_cast<long>(std::floor(span / spec.step + 1e-9));
+    for (long k = 0; k <= count; ++k) times_.push_back(std::min(t_end, start + k * spec.step));
+  }
+  for (const ChannelRequest& req : spec.channels) {
+    Source src{req.kind, req.index, static_cast<int>(channels_.size())};
+    switch (req.kind) {
+      case ChannelRequest::Kind::Marker: {
+        const std::string& m = model.markers().at(req.index).name;
+        for (const char* c : {"px", "py", "pz"}) channels_.push_back({m + "." + c, "m"});
+        for (const char* c : {"vx", "vy", "vz"}) channels_.push_back({m + "." + c, "m/s"});
+        break;
+      }
+      case ChannelRequest::Kind::Element: {
+        const Element& e = *model.elements().at(req.index);
+        for (const Channel& c : e.channels())
+          channels_.push_back({e.name() + "." + c.name, c.unit});
+        break;
+      }
+      case ChannelRequest::Kind::Modal: {
+        const Body& b = model.bodies().at(req.index);
+        for (int k = 0; k < b.n(); ++k)
+          channels_.push_back({b.name + ".q" + std::to_string(k), ""});
+        break;
+      }
+    }
+    sources_.push_back(src);
+  }
+}
+
+void OutputSet::values(double t, const double* q, const double* v, double* out) {
+  Model& model = sys_.model();
+  sys_.update_markers(t, q, v);
+  if (crank_body_ >= 0) out[0] = model.bodies()[crank_body_].lof.spin_angle(t) * kDeg;
+  for (const Source& src : sources_) {
+    double* o = out + src.first;
+    switch (src.kind) {
+      case ChannelRequest::Kind::Marker: {
+        const MarkerMotion& m = sys_.motion(src.index);
+        for (int a = 0; a < 3; ++a) {
+          o[a] = m.p[a];
+          o[3 + a] = m.v[a];
+        }
+        break;
+      }
+      case ChannelRequest::Kind::Element: {
+        const Element& e = *model.elements()[src.index];
+        scratch_.clear();
+        for (int m : e.markers()) scratch_.push_back(sys_.motion(m));
+        e.channel_values(t, scratch_.data(), o);
+        break;
+      }
+      case ChannelRequest::Kind::Modal: {
+        const Body& b = model.bodies()[src.index];
+        for (int k = 0; k < b.n(); ++k) o[k] = q[b.offset + k];
+        break;
+      }
+    }
+  }
+}
+
+}  // namespace evas

@@ -1,0 +1,55 @@
+// Output channels and output times of a run (from a scene's OutputSpec).
+//
+// Channels, in the order the scene lists them:
+//   {marker: m}    m.px m.py m.pz [m], m.vx m.vy m.vz [m/s]   (G components)
+//   {element: e}   e.<channel> for every channel the element declares
+//   {modal: b}     b.q<k> for every mode k of body b (modal coordinate)
+// On the crank-angle grid a first channel "crank_angle" [deg] holds the LOF
+// spin angle of the crank body.
+//
+// Output times: uniform in time (start, start + step, ... <= t_end) or the
+// times at which the crank body's spin angle reaches multiples of `step`
+// degrees (found by bracketing and bisection, so speed profiles work too).
+#pragma once
+
+#include <vector>
+
+#include "elements/element.h"
+#include "io/scene.h"
+#include "solver/system.h"
+
+namespace evas {
+
+class OutputSet {
+ public:
+  OutputSet(const OutputSpec& spec, System& system, double t_start, double t_end);
+
+  const std::vector<Channel>& channels() const { return channels_; }
+  int size() const { return static_cast<int>(channels_.size()); }
+  /// Output times, ascending, within [t_start, t_end].
+  const std::vector<double>& times() const { return times_; }
+
+  /// Channel values at (t, q, v); `out` has size(). Updates the system's markers.
+  void values(double t, const double* q, const double* v, double* out);
+
+ private:
+  struct Source {
+    ChannelRequest::Kind kind;
+    int index;  // marker, element or body
+    int first;  // first channel
+  };
+  System& sys_;
+  std::vector<Channel> channels_;
+  std::vector<Source> sources_;
+  std::vector<double> times_;
+  int crank_body_ = -1;  // >= 0: channel 0 is the crank angle
+  std::vector<MarkerMotion> scratch_;
+};
+
+/// Times in [t0, t1] where the spin angle of `lof` (in degrees) reaches
+/// start_deg + k step_deg (start_given) or a multiple of step_deg, in the
+/// direction the angle moves. Ascending; the angle is assumed monotonic.
+std::vector<double> crank_angle_times(const Lof& lof, double t0, double t1, double step_deg,
+                                      double start_deg, bool start_given);
+
+}  // namespace evas

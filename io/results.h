@@ -1,0 +1,106 @@
+// Results files, written while a run goes (HDF5):
+//   /time               (nt,) extendible [s]
+//   /channels/values    (nt x nc) extendible, row = one output time
+//   /channels/names, /channels/units   (nc,) string datasets
+//   root attributes     scene (the full scene text), integrator, grid ("time" or
+//                       "crank-angle"), status ("running", "completed", "failed: ...")
+//   /stats              group; integrator statistics as attributes (finish())
+// Rows are buffered and flushed (extent + write + H5Fflush) every `flush_rows`
+// rows or `flush_seconds` of wall time, so a crash keeps what was computed.
+// Non-finite values are never written: append() throws RunError instead.
+#pragma once
+
+#include <chrono>
+#include <string>
+#include <vector>
+
+#include "elements/element.h"
+#include "integrators/integrator.h"
+#include "io/hdf5_util.h"
+
+namespace evas {
+
+/// Running statistics of one channel over the appended rows.
+struct ChannelSummary {
+  double min = 0.0, max = 0.0, rms = 0.0;
+  long count = 0;
+};
+
+class ResultsWriter {
+ public:
+  struct Options {
+    std::string scene_text;
+    std::string integrator;
+    std::string grid = "time";
+    int flush_rows = 256;
+    double flush_seconds = 1.0;
+  };
+
+  /// Creates (truncates) `path`. Throws RunError naming the file on failure.
+  ResultsWriter(const std::string& path, std::vector<Channel> channels, const Options& opt);
+  /// Flushes buffered rows and closes; the status stays "running" unless finish() was called.
+  ~ResultsWriter();
+  ResultsWriter(const ResultsWriter&) = delete;
+  ResultsWriter& operator=(const ResultsWriter&) = delete;
+
+  /// Buffers one row (size = number of channels). If any value is NaN/Inf the
+  /// rows before it are flushed and RunError names the channel and the time.
+  void append(double t, const double* values);
+  void append(double t, const std::vector<double>& values) { append(t, values.data()); }
+  /// Writes buffered rows and flushes the file.
+  void flush();
+  /// Flushes, writes statistics and status, closes the file.
+  void finish(const IntegratorStats& stats, const std::string& status);
+
+  const std::string& path() const { return path_; }
+  const std::vector<Channel>& channels() const { return channels_; }
+  long rows() const { return rows_; }
+  double last_time() const { return last_t_; }
+  std::vector<ChannelSummary> summary() const;
+
+ private:
+  std::string path_;
+  std::vector<Channel> channels_;
+  Options opt_;
+  h5::Handle file_, time_, values_;
+  std::vector<double> tbuf_, vbuf_;
+  std::vector<double> min_, max_, sumsq_;
+  long rows_ = 0;
+  double last_t_ = 0.0;
+  std::chrono::steady_clock::time_point last_flush_;
+};
+
+/// Everything write_summary_json reports.
+struct RunSummary {
+  std::string scene;
+  std::string scene_path;
+  std::string integrator;
+  IntegratorSettings settings;
+  std::string grid;
+  std::string status;
+  double t_start = 0.0, t_end = 0.0;  ///< requested
+  double t_reached = 0.0;             ///< last output time written
+  long rows = 0;
+  IntegratorStats stats;
+  std::vector<Channel> channels;
+  std::vector<ChannelSummary> channel_summary;
+};
+
+/// Writes `s` as JSON to `path`. Throws RunError naming the file on failure.
+void write_summary_json(const std::string& path, const RunSummary& s);
+
+/// The contents of a results file.
+struct ResultsData {
+  std::vector<double> time;
+  Mat values;  ///< nt x nc
+  std::vector<std::string> names, units;
+  std::string scene, integrator, grid, status;
+};
+
+/// Reads a (possibly partial) results file. Throws InputError naming the file.
+ResultsData read_results(const std::string& path);
+
+/// Writes a CSV with header `time[s],name[unit],...`. Throws InputError naming the file.
+void export_csv(const std::string& h5path, const std::string& csvpath);
+
+}  // namespace evas

@@ -1,0 +1,52 @@
+// Scene files (YAML): bodies, markers, elements, integrator, time span and
+// outputs of one simulation. The format is described in docs/user-guide.md
+// ("Scene files"). Every error is an InputError of the form
+//     <file>:<line>: <item>: <what is wrong>
+// and every unknown key is an error. Element parameters are read through the
+// element registry (elements/registry.h), never hard-coded here.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "integrators/integrator.h"
+#include "solver/model.h"
+
+namespace evas {
+
+/// One `output.channels` entry, resolved against the model.
+struct ChannelRequest {
+  enum class Kind { Marker, Element, Modal };
+  Kind kind = Kind::Marker;
+  std::string name;  ///< marker, element or body name
+  int index = -1;    ///< into Model::markers(), elements() or bodies()
+  int line = 0;      ///< line in the scene file (1-based)
+};
+
+struct OutputSpec {
+  std::string grid = "time";  ///< "time" or "crank-angle"
+  double step = 1e-4;         ///< [s] for the time grid, [deg] for crank-angle
+  std::string crank_body;     ///< crank-angle: body whose spin LOF gives the angle
+  double start = 0.0;         ///< first output time [s] or crank angle [deg]
+  bool start_given = false;   ///< false: start at t_start (or its crank angle)
+  std::vector<ChannelRequest> channels;
+};
+
+struct Scene {
+  std::string name;
+  std::string text;  ///< the scene file as read
+  std::string path;
+  std::unique_ptr<Model> model;
+  IntegratorSettings integrator;
+  double t_start = 0.0, t_end = 0.0;
+  OutputSpec output;
+};
+
+/// Reads a scene file; body files are resolved relative to its directory.
+Scene read_scene(const std::string& path);
+/// Parses scene text as if read from `path` (for tests; `path` names the file
+/// in messages and anchors relative body-file paths).
+Scene parse_scene(const std::string& text, const std::string& path);
+
+}  // namespace evas

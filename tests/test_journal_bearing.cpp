@@ -1,0 +1,690 @@
+// Journal bearing element (elements/journal_bearing.*) against the short-bearing
+// (Ocvirk) results collected in references.md section 1:
+//   - film forces in the line-of-centres frame (Ocvirk, pi-film),
+//   - steady load capacity, the Sommerfeld quartic and the attitude angle,
+//   - linearised stiffness and damping coefficients a_ij, b_ij (Friswell, Penny,
+//     Garvey, Lees, "Dynamics of Rotating Machines", CUP 2010, short-bearing model),
+//   - oil whirl of a rigid rotor above the threshold speed from the linearised
+//     coefficients (Lund's stability method).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <functional>
+#include <memory>
+
+#include "elements/journal_bearing.h"
+#include "integrators/integrator.h"
+#include "solver/system.h"
+
+using namespace evas;
+using V2 = Eigen::Vector2d;
+using M2 = Eigen::Matrix2d;
+
+namespace {
+
+JournalBearingParams base_params(bool closed_form = true, int n_delta = 64, int halves = 1) {
+  JournalBearingParams p;
+  p.radius = 0.025;
+  p.width = 0.02;
+  p.clearance = 50e-6;
+  p.viscosity = 0.02;
+  p.closed_form = closed_form;
+  p.n_delta = n_delta;
+  p.halves = halves;
+  return p;
+}
+
+JournalBearing make_bearing(const JournalBearingParams& p, const std::string& name = "jb") {
+  return JournalBearing(name, {0, 1}, p);
+}
+
+// references.md s.1: forces on the journal in the line-of-centres frame (r along e,
+// t at +90 deg in the direction of rotation), pi-film over delta in (0, pi).
+V2 ocvirk_reference(const JournalBearingParams& p, const V2& e, const V2& ed, double om) {
+  const double c = p.clearance, en = e.norm(), eps = en / c;
+  const V2 r = e / en, t(-r.y(), r.x());
+  const double epsd = ed.dot(r) / c, gd = ed.dot(t) / en;
+  const double k = p.viscosity * p.radius * std::pow(p.width, 3) / (2 * c * c), s = 1 - eps * eps;
+  const double Fr = -k * (2 * (om - 2 * gd) * eps * eps / (s * s) +
+                          M_PI * epsd * (1 + 2 * eps * eps) / std::pow(s, 2.5));
+  const double Ft =
+      k * (M_PI * (om - 2 * gd) * eps / (2 * std::pow(s, 1.5)) + 4 * eps * epsd / (s * s));
+  return Fr * r + Ft * t;
+}
+
+// Steady load capacity (references.md s.1).
+double load_capacity(const JournalBearingParams& p, double om, double eps) {
+  const double c = p.clearance;
+  return p.viscosity * om * p.radius * std::pow(p.width, 3) / (4 * c * c) * eps *
+         std::sqrt(M_PI * M_PI * (1 - eps * eps) + 16 * eps * eps) / std::pow(1 - eps * eps, 2);
+}
+
+// Root in (0, 1) of the quartic in x = eps^2 for the modified Sommerfeld number.
+double eps_from_quartic(double Ss) {
+  const double pi2 = M_PI * M_PI;
+  auto f = [&](double x) {
+    return (((x - 4) * x + (6 - Ss * Ss * (16 - pi2))) * x - (4 + pi2 * Ss * Ss)) * x + 1;
+  };
+  double lo = 0.0, hi = 1.0;  // f(0) = 1 > 0, f(1) = -Ss^2 pi^2 - Ss^2 (16 - pi^2) < 0
+  for (int i = 0; i < 200; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (f(mid) > 0 ? lo : hi) = mid;
+  }
+  return std::sqrt(0.5 * (lo + hi));
+}
+
+// Friswell et al. short-bearing coefficients (references.md s.1): K = (W/c) a, C = (W/(c om)) b.
+void friswell(double eps, M2& a, M2& b) {
+  const double e2 = eps * eps, pi2 = M_PI * M_PI, s = 1 - e2, rs = std::sqrt(s);
+  const double h0 = std::pow(pi2 * s + 16 * e2, -1.5);
+  a(0, 0) = 4 * h0 * (pi2 * (2 - e2) + 16 * e2);
+  a(0, 1) = M_PI * h0 * (pi2 * s * s - 16 * e2 * e2) / (eps * rs);
+  a(1, 0) = -M_PI * h0 * (pi2 * s * (1 + 2 * e2) + 32 * e2 * (1 + e2)) / (eps * rs);
+  a(1, 1) = 4 * h0 * (pi2 * (1 + 2 * e2) + 32 * e2 * (1 + e2) / s);
+  b(0, 0) = 2 * M_PI * h0 * rs * (pi2 * (1 + 2 * e2) - 16 * e2) / eps;
+  b(0, 1) = b(1, 0) = -8 * h0 * (pi2 * (1 + 2 * e2) - 16 * e2);
+  b(1, 1) = 2 * M_PI * h0 * (pi2 * s * s + 48 * e2) / (eps * rs);
+}
+
+// Static equilibrium of the journal under the load (0, -W): Newton on
+// f(e) + (0, -W) = 0 with the element's analytic derivative df/de.
+V2 equilibrium(const JournalBearing& jb, double om, double W, int* iterations = nullptr) {
+  const double c = jb.params().clearance;
+  V2 e(0.3 * c, -0.3 * c);
+  int it = 0;
+  for (; it < 100; ++it) {
+    const FilmForce f = jb.hydro(e, V2::Zero(), om, 1.0, true, jb.params().closed_form);
+    const V2 r = f.f + V2(0.0, -W);
+    V2 de = -f.df_de.lu().solve(r);
+    // Keep the iterate inside the clearance circle.
+    double lam = 1.0;
+    while ((e + lam * de).norm() > 0.999 * c) lam *= 0.5;
+    e += lam * de;
+    if (de.norm() < 1e-15 * c) break;
+  }
+  if (iterations) *iterations = it;
+  return e;
+}
+
+}  // namespace
+
+// (1) Quadrature against the closed form, and the closed form against references.md s.1.
+TEST(JournalBearing, QuadratureMatchesClosedForm) {
+  const double om = 300.0;
+  const JournalBearingParams pc = base_params(true);
+  const JournalBearing closed = make_bearing(pc);
+  const double c = pc.clearance;
+  struct State {
+    double eps, epsd, gd;  // eps, eps_dot [1/s], gamma_dot [rad/s]
+  };
+  const std::vector<State> states = {{0.1, 0.0, 0.0},   {0.5, 0.0, 0.0},   {0.8, 0.0, 0.0},
+                                     {0.95, 0.0, 0.0},  {0.5, 0.0, 40.0},  {0.5, 0.0, -60.0},
+                                     {0.5, 50.0, 0.0},  {0.5, -80.0, 0.0}, {0.7, 30.0, 20.0},
+                                     {0.3, -200., 90.}, {0.6, 0.0, 200.0}, {0.9, 20.0, -30.0}};
+  std::printf("(1) relative difference |F_quad - F_closed| / |F_closed| vs n_delta\n");
+  std::printf("%5s %7s %7s |", "eps", "epsd", "gd");
+  const std::vector<int> nds = {4, 8, 16, 32, 64, 128};
+  for (int n : nds) std::printf(" %9d", n);
+  std::printf(" | ref-formula diff\n");
+  double worst64 = 0.0;
+  for (const auto& s : states) {
+    const double gam = 0.7;  // arbitrary line-of-centres angle
+    const V2 r(std::cos(gam), std::sin(gam)), t(-r.y(), r.x());
+    const V2 e = s.eps * c * r, ed = s.epsd * c * r + s.eps * c * s.gd * t;
+    const V2 fc = closed.hydro(e, ed, om, 1.0, false, true).f;
+    std::printf("%5.2f %7.1f %7.1f |", s.eps, s.epsd, s.gd);
+    for (int n : nds) {
+      const JournalBearing q = make_bearing(base_params(false, n));
+      const double d = (q.hydro(e, ed, om, 1.0, false, false).f - fc).norm() / fc.norm();
+      std::printf(" %9.2e", d);
+      if (n == 64) worst64 = std::max(worst64, d);
+    }
+    // references.md s.1 integrates over delta in (0, pi): exact when epsd = 0 and om > 2 gd.
+    const double dref = (ocvirk_reference(pc, e, ed, om) - fc).norm() / fc.norm();
+    std::printf(" | %9.2e%s\n", dref, s.epsd == 0.0 ? "" : " (film region shifted by epsd)");
+    if (s.epsd == 0.0 && om > 2 * s.gd) {
+      EXPECT_LT(dref, 1e-12) << "closed form vs references.md s.1 at eps " << s.eps;
+    }
+  }
+  std::printf("worst n_delta = 64 difference: %.3e\n", worst64);
+  EXPECT_LT(worst64, 1e-9);
+  // Centred journal (e = 0) with a squeeze velocity: finite and the methods agree.
+  const V2 fz = closed.hydro(V2::Zero(), V2(0.0, 0.01), om, 1.0, false, true).f;
+  const V2 fq =
+      make_bearing(base_params(false)).hydro(V2::Zero(), V2(0.0, 0.01), om, 1.0, false, false).f;
+  EXPECT_TRUE(fz.allFinite());
+  EXPECT_LT((fz - fq).norm(), 1e-12 * fz.norm());
+  EXPECT_LT(fz.y(), 0.0);  // squeeze film resists the approach
+}
+
+// (2) Static equilibrium against the load-capacity quartic and tan(phi).
+TEST(JournalBearing, StaticEquilibrium) {
+  const double om = 2 * M_PI * 50;
+  for (bool closed_form : {true, false}) {
+    const JournalBearingParams p = base_params(closed_form);
+    const JournalBearing jb = make_bearing(p);
+    std::printf("(2) static equilibrium, method %s\n", closed_form ? "ocvirk" : "quadrature");
+    for (double W : {50.0, 300.0, 1500.0, 8000.0}) {
+      int its = 0;
+      const V2 e = equilibrium(jb, om, W, &its);
+      const double eps = e.norm() / p.clearance;
+      const double Ss = 2 * p.radius * om * p.viscosity * std::pow(p.width, 3) /
+                        (8 * p.clearance * p.clearance * W);
+      const double eps_ref = eps_from_quartic(Ss);
+      // Attitude angle between the load line (-y) and the line of centres.
+      const double phi = std::acos(-e.y() / e.norm());
+      const double phi_ref = std::atan(M_PI * std::sqrt(1 - eps_ref * eps_ref) / (4 * eps_ref));
+      std::printf(
+          "  W = %7.1f N: eps %.12f (quartic %.12f, err %.2e)  phi %.12f (ref %.12f, err %.2e)"
+          "  e_x %+.3e  Newton its %d\n",
+          W, eps, eps_ref, eps - eps_ref, phi, phi_ref, phi - phi_ref, e.x(), its);
+      EXPECT_NEAR(eps, eps_ref, 1e-10);
+      EXPECT_NEAR(phi, phi_ref, 1e-10);
+      EXPECT_NEAR(load_capacity(p, om, eps_ref), W, 1e-8 * W);
+      // Journal displaced down and, for rotation from +x to +y, towards +x.
+      EXPECT_LT(e.y(), 0.0);
+      EXPECT_GT(e.x(), 0.0);
+    }
+  }
+}
+
+// (3) Linearised stiffness and damping by finite differences of the element about
+// the equilibrium against the short-bearing a_ij, b_ij (Friswell et al.).
+TEST(JournalBearing, LinearisedCoefficients) {
+  const double om = 2 * M_PI * 50;
+  const JournalBearingParams p = base_params(true);
+  const JournalBearing jb = make_bearing(p);
+  const double c = p.clearance;
+  std::printf("(3) linearised coefficients (FD of the element) vs Friswell et al.\n");
+  for (double eps_target : {0.2, 0.5, 0.7}) {
+    const double W = load_capacity(p, om, eps_target);
+    const V2 e0 = equilibrium(jb, om, W);
+    ASSERT_NEAR(e0.norm() / c, eps_target, 1e-10);
+    M2 K, C;
+    const double hx = 1e-5 * c, hv = 1e-5 * c * om;
+    for (int j = 0; j < 2; ++j) {
+      V2 dx = V2::Zero();
+      dx[j] = hx;
+      K.col(j) = -(jb.film(0, e0 + dx, V2::Zero(), om, 1, false).f -
+                   jb.film(0, e0 - dx, V2::Zero(), om, 1, false).f) /
+                 (2 * hx);
+      V2 dv = V2::Zero();
+      dv[j] = hv;
+      C.col(j) =
+          -(jb.film(0, e0, dv, om, 1, false).f - jb.film(0, e0, -dv, om, 1, false).f) / (2 * hv);
+    }
+    const M2 a_el = K * c / W, b_el = C * c * om / W;
+    M2 a, b;
+    friswell(eps_target, a, b);
+    const char* n[2][2] = {{"xx", "xy"}, {"yx", "yy"}};
+    std::printf("  eps = %.1f\n", eps_target);
+    for (int i = 0; i < 2; ++i)
+      for (int j = 0; j < 2; ++j) {
+        const double ea = (a_el(i, j) - a(i, j)) / std::abs(a(i, j));
+        const double eb = (b_el(i, j) - b(i, j)) / std::abs(b(i, j));
+        std::printf(
+            "    a_%s elem %+.10f ref %+.10f rel err %+.2e   b_%s elem %+.10f ref %+.10f rel err "
+            "%+.2e\n",
+            n[i][j], a_el(i, j), a(i, j), ea, n[i][j], b_el(i, j), b(i, j), eb);
+        EXPECT_LT(std::abs(ea), 1e-7);
+        EXPECT_LT(std::abs(eb), 1e-7);
+      }
+    // The analytic element derivatives give the same matrices.
+    const FilmForce f = jb.film(0, e0, V2::Zero(), om, 1, true);
+    EXPECT_LT((-f.df_de * c / W - a).norm(), 1e-9 * a.norm());
+    EXPECT_LT((-f.df_ded * c * om / W - b).norm(), 1e-9 * b.norm());
+  }
+}
+
+namespace {
+
+// A general marker state: a rotated, slowly moving bearing marker and a spinning,
+// slightly tilted journal, in a scaled bearing (clearance 1 cm) so that the fixed
+// finite-difference steps of derivatives_fd (1e-6) are small against the clearance.
+void general_state(MarkerMotion m[2], double eps) {
+  m[0].R = rotation_from_vector(Vec3(0.3, -0.2, 0.5));
+  m[0].p = Vec3(0.1, 0.2, -0.3);
+  m[0].v = Vec3(0.02, -0.01, 0.03);
+  m[0].psi = Vec3(0.001, -0.002, 0.003);
+  m[0].w = Vec3(0.4, -0.3, 0.2);
+  const Vec3 x = m[0].R.col(0), y = m[0].R.col(1), z = m[0].R.col(2);
+  m[1].p = m[0].p + 0.01 * eps * (0.6 * x - 0.8 * y) + 0.002 * z;
+  m[1].v = m[0].v + 0.05 * x + 0.08 * y - 0.01 * z;
+  m[1].psi = Vec3(0.02, 0.01, -0.015) + 1.3 * z;
+  m[1].w = 120.0 * z + Vec3(0.5, -0.7, 0.3);
+}
+
+JournalBearingParams scaled_params(bool closed_form, int halves) {
+  JournalBearingParams p;
+  p.radius = 0.05;
+  p.width = 0.04;
+  p.clearance = 0.01;
+  p.viscosity = 0.05;
+  p.closed_form = closed_form;
+  p.n_delta = 64;
+  p.halves = halves;
+  return p;
+}
+
+}  // namespace
+
+// (4) Analytic derivatives against the finite-difference fallback.
+TEST(JournalBearing, DerivativesMatchFiniteDifferences) {
+  std::printf("(4) max |D - D_fd| / max |D|\n");
+  for (bool closed_form : {true, false})
+    for (int halves : {1, 2})
+      for (double eps : {0.0, 0.3, 0.8, 0.93}) {
+        JournalBearingParams p = scaled_params(closed_form, halves);
+        if (eps > 0.9) {  // contact active (the FD step must stay small against the gap)
+          p.eps_max = 0.9;
+          p.contact_stiffness = 1e9;
+        }
+        const JournalBearing jb = make_bearing(p);
+        MarkerMotion m[2];
+        general_state(m, eps);
+        Mat D(12, 24), Dfd(12, 24);
+        jb.derivatives(0.1, m, D);
+        jb.derivatives_fd(0.1, m, Dfd);
+        const double err = (D - Dfd).cwiseAbs().maxCoeff() / D.cwiseAbs().maxCoeff();
+        std::printf("  %-10s halves %d eps %.3f: %.2e\n", closed_form ? "ocvirk" : "quadrature",
+                    halves, eps, err);
+        EXPECT_LT(err, 1e-6);
+        // Action and reaction, moment balance about the origin.
+        MarkerLoad l[2];
+        jb.evaluate(0.1, m, l);
+        EXPECT_LT((l[0].F + l[1].F).norm(), 1e-12 * l[1].F.norm());
+        const Vec3 Mo = l[0].M + l[1].M + m[0].p.cross(l[0].F) + m[1].p.cross(l[1].F);
+        EXPECT_LT(Mo.norm(), 1e-12 * l[1].F.norm());
+      }
+}
+
+// halves = 2: an aligned journal gets the full-width force, a tilted one a restoring moment.
+TEST(JournalBearing, TwoHalvesGiveMoment) {
+  const double om = 300.0, c = 50e-6;
+  const JournalBearing one = make_bearing(base_params(true, 64, 1));
+  const JournalBearing two = make_bearing(base_params(true, 64, 2));
+  MarkerMotion m[2];
+  m[1].p = Vec3(0.2 * c, -0.5 * c, 0.0);
+  m[1].w = Vec3(0, 0, om);
+  MarkerLoad l1[2], l2[2];
+  one.evaluate(0, m, l1);
+  two.evaluate(0, m, l2);
+  EXPECT_LT((l1[1].F - l2[1].F).norm(), 1e-12 * l1[1].F.norm());
+  EXPECT_LT(l2[1].M.norm(), 1e-12 * l1[1].F.norm() * 0.02);
+  // Tilt about x by a small angle: the +z end moves towards -y.
+  m[1].psi = Vec3(1e-3, 0.0, 0.0);
+  two.evaluate(0, m, l2);
+  std::printf("tilted journal: moment (%.4e, %.4e, %.4e) N m\n", l2[1].M.x(), l2[1].M.y(),
+              l2[1].M.z());
+  EXPECT_LT(l2[1].M.x(), 0.0);  // restoring
+  std::vector<double> ch(two.channels().size());
+  two.channel_values(0, m, ch.data());
+  EXPECT_NEAR(ch[2], l2[1].M.x(), 1e-12 * std::abs(l2[1].M.x()));
+}
+
+// (5) Extreme film: named errors with the time, or a continuous contact force.
+TEST(JournalBearing, ExtremeFilm) {
+  const double om = 300.0;
+  JournalBearingParams p = base_params(true);
+  const double c = p.clearance;
+  const JournalBearing jb = make_bearing(p, "main-3");
+  MarkerMotion m[2];
+  m[1].w = Vec3(0, 0, om);
+  MarkerLoad l[2];
+  m[1].p = Vec3(0.0, -0.979 * c, 0.0);
+  EXPECT_NO_THROW(jb.evaluate(0.25, m, l));
+  EXPECT_TRUE(l[1].F.allFinite());
+  m[1].p = Vec3(0.0, -0.985 * c, 0.0);
+  try {
+    jb.evaluate(0.25, m, l);
+    ADD_FAILURE() << "no error above eps_max";
+  } catch (const RunError& e) {
+    const std::string msg = e.what();
+    std::printf("eps > eps_max: %s\n", msg.c_str());
+    EXPECT_NE(msg.find("'main-3'"), std::string::npos);
+    EXPECT_NE(msg.find("t = 0.25 s"), std::string::npos);
+    EXPECT_NE(msg.find("0.985"), std::string::npos);
+  }
+  Mat D(12, 24);
+  EXPECT_THROW(jb.derivatives(0.25, m, D), RunError);
+
+  // With contact: finite everywhere below e = c, continuous at eps_max.
+  p.contact_stiffness = 1e12;
+  p.contact_exponent = 1.5;
+  for (bool closed_form : {true, false}) {
+    p.closed_form = closed_form;
+    const JournalBearing jc = make_bearing(p, "main-3");
+    const double e0 = p.eps_max * c;
+    auto force = [&](double e) { return jc.film(0.5, V2(0.0, -e), V2::Zero(), om, 1.0, false).f; };
+    const double d = 1e-12;
+    const V2 jump = force(e0 + d) - force(e0 - d);
+    const V2 slope = (force(e0 - d) - force(e0 - 3 * d)) / (2 * d);
+    std::printf("contact onset (%s): jump %.3e N over 2e-12 m, film slope %.3e N/m\n",
+                closed_form ? "ocvirk" : "quadrature", jump.norm(), slope.norm());
+    EXPECT_LT(jump.norm(), 4 * d * slope.norm() + 1e-9 * force(e0).norm());
+    for (double eps : {0.981, 0.99, 0.999, 0.99999, 1 - 1e-9}) {
+      const V2 f = force(eps * c),
+               fh = jc.hydro(V2(0.0, -eps * c), V2::Zero(), om, 1.0, false, closed_form).f;
+      EXPECT_TRUE(f.allFinite()) << eps;
+      const double fc_expected = p.contact_stiffness * std::pow((eps - p.eps_max) * c, 1.5);
+      // (the film force grows without bound: compare to its rounding level)
+      EXPECT_NEAR((f - fh).y(), fc_expected, 1e-9 * fc_expected + 1e-14 * fh.norm());
+    }
+    m[1].p = Vec3(0.0, -0.99 * c, 0.0);
+    EXPECT_NO_THROW(jc.evaluate(0.5, m, l));
+    EXPECT_TRUE(l[1].F.allFinite() && l[0].M.allFinite());
+    // Film closed: always an error.
+    m[1].p = Vec3(0.0, -1.0 * c, 0.0);
+    try {
+      jc.evaluate(0.5, m, l);
+      ADD_FAILURE() << "no error with the film closed";
+    } catch (const RunError& e) {
+      const std::string msg = e.what();
+      EXPECT_NE(msg.find("'main-3'"), std::string::npos);
+      EXPECT_NE(msg.find("film closed"), std::string::npos);
+      EXPECT_NE(msg.find("t = 0.5 s"), std::string::npos);
+    }
+  }
+}
+
+// The declaration builds the element from validated parameters.
+TEST(JournalBearing, Declaration) {
+  const ElementType t = journal_bearing_element_type();
+  EXPECT_EQ(t.type, "journal-bearing");
+  ParamValues v;
+  v.numbers["radius"] = {0.025};
+  v.numbers["width"] = {0.02};
+  v.numbers["clearance"] = {50e-6};
+  v.numbers["viscosity"] = {0.02};
+  v.texts["method"] = "quadrature";
+  complete_params(t, v, "element 'jb'");
+  auto e = t.make("jb", {0, 1}, v);
+  auto* jb = dynamic_cast<JournalBearing*>(e.get());
+  ASSERT_NE(jb, nullptr);
+  EXPECT_FALSE(jb->params().closed_form);
+  EXPECT_EQ(jb->params().n_delta, 64);
+  EXPECT_EQ(jb->params().halves, 1);
+  EXPECT_DOUBLE_EQ(jb->params().eps_max, 0.98);
+  v.numbers["halves"] = {1.5};
+  EXPECT_THROW(t.make("jb", {0, 1}, v), InputError);
+  EXPECT_EQ(jb->channels().size(), 8u);
+}
+
+// (6) Rigid rotor on two bearings: static equilibrium below the oil-whirl
+// threshold, half-speed whirl above it. The threshold is predicted from the
+// linearised bearing coefficients (Lund's method: eigenvalues of the 4 x 4
+// linear system as a function of speed).
+namespace {
+
+struct RotorCase {
+  double mass = 200.0;  // [kg], carried by two equal bearings
+  double g = 9.81;
+  double half_span = 0.1;  // bearings at z = +-half_span
+  JournalBearingParams bearing = base_params(true);
+};
+
+// Linear stability at speed om: equilibrium of one bearing under m g / 2, its
+// K = -df/de and C = -df/ded, and the eigenvalues of m xdd + 2 C xd + 2 K x = 0.
+struct Linear {
+  double eps, growth, whirl;  // eps, max real part [1/s], |imag| of that eigenvalue [rad/s]
+  V2 e_eq;
+};
+Linear linear_rotor(const RotorCase& rc, double om) {
+  const JournalBearing jb = make_bearing(rc.bearing);
+  const double W = 0.5 * rc.mass * rc.g;
+  Linear r;
+  r.e_eq = equilibrium(jb, om, W);
+  r.eps = r.e_eq.norm() / rc.bearing.clearance;
+  const FilmForce f = jb.film(0, r.e_eq, V2::Zero(), om, 1.0, true);
+  Eigen::Matrix4d A = Eigen::Matrix4d::Zero();
+  A.topRightCorner<2, 2>() = M2::Identity();
+  A.bottomLeftCorner<2, 2>() = 2.0 * f.df_de / rc.mass;
+  A.bottomRightCorner<2, 2>() = 2.0 * f.df_ded / rc.mass;
+  const Eigen::Vector4cd ev = A.eigenvalues();
+  r.growth = -1e300;
+  for (int i = 0; i < 4; ++i)
+    if (ev[i].real() > r.growth) r.growth = ev[i].real(), r.whirl = std::abs(ev[i].imag());
+  return r;
+}
+
+double onset_speed(const RotorCase& rc, double lo, double hi) {
+  EXPECT_LT(linear_rotor(rc, lo).growth, 0.0);
+  EXPECT_GT(linear_rotor(rc, hi).growth, 0.0);
+  for (int i = 0; i < 80; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (linear_rotor(rc, mid).growth < 0 ? lo : hi) = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+
+}  // namespace
+
+namespace {
+
+// Point-mass-like rotor: two rings of 4 nodes at z = +-half_span (centre of mass at
+// the origin), only the three rigid translation modes kept.
+std::shared_ptr<ModalBody> rotor_body(const RotorCase& rc) {
+  auto b = std::make_shared<ModalBody>();
+  b->name = "rotor";
+  const int N = 8;
+  b->s.resize(N, 3);
+  std::vector<Triplet> t;
+  for (int i = 0; i < N; ++i) {
+    const double ang = 0.5 * M_PI * (i % 4), z = i < 4 ? -rc.half_span : rc.half_span;
+    b->s.row(i) << 0.05 * std::cos(ang), 0.05 * std::sin(ang), z;
+    b->node_ids.push_back(i + 1);
+    t.emplace_back(i, i, rc.mass / N);
+  }
+  b->mass.resize(N, N);
+  b->mass.setFromTriplets(t.begin(), t.end());
+  b->modes = rigid_basis(b->s, b->mass);
+  b->eigenvalues = Vec::Zero(6);
+  b->damping = Vec::Zero(6);
+  b->kinds.assign(6, ModeKind::Rigid);
+  b->node_sets["ring1"] = {1, 2, 3, 4};
+  b->node_sets["ring2"] = {5, 6, 7, 8};
+  return std::make_shared<ModalBody>(b->select_modes({0, 1, 2}));
+}
+
+struct Response {
+  std::vector<double> t;
+  std::vector<V2> d;  // journal centre of bearing 1 minus the equilibrium (bearing plane)
+  V2 e_end;           // final eccentricity vector
+};
+
+// Runs the rotor at speed om from e_eq + d0 (at rest in G) with IDA. spin_lof:
+// the rotor body rides on a spin LOF (paper's crankshaft set-up); otherwise the
+// body is on a fixed LOF and the bearings get the spin as journal_speed.
+Response run_rotor(const RotorCase& rc, double om, const V2& e_eq, const V2& d0, double t_end,
+                   double dt_out, bool spin_lof, double stop_amplitude = 1e300) {
+  Model model;
+  model.gravity = Vec3(0.0, -rc.g, 0.0);
+  auto body = rotor_body(rc);
+  const Lof lof = spin_lof
+                      ? Lof::spin(Vec3::Zero(), Mat3::Identity(), Vec3::UnitZ(), 0.0, {0.0}, {om})
+                      : Lof::fixed(Vec3::Zero(), Mat3::Identity());
+  model.add_body("rotor", body, lof);
+  const Vec3 z1(0, 0, -rc.half_span), z2(0, 0, rc.half_span);
+  const int j1 =
+      model.add_marker(make_set_marker("j1", 0, *body, body->node_sets.at("ring1"), {}, &z1));
+  const int j2 =
+      model.add_marker(make_set_marker("j2", 0, *body, body->node_sets.at("ring2"), {}, &z2));
+  const int b1 = model.add_marker(make_ground_marker("b1", z1, Mat3::Identity()));
+  const int b2 = model.add_marker(make_ground_marker("b2", z2, Mat3::Identity()));
+  JournalBearingParams p = rc.bearing;
+  p.journal_speed = spin_lof ? 0.0 : om;
+  p.contact_stiffness = 1e12;  // keep large whirl orbits finite
+  model.add_element(std::make_unique<JournalBearing>("jb1", std::vector<int>{b1, j1}, p));
+  model.add_element(std::make_unique<JournalBearing>("jb2", std::vector<int>{b2, j2}, p));
+  // Translation modes: u = q / sqrt(m) in L components (L = G at t = 0).
+  const double sm = std::sqrt(rc.mass);
+  const V2 e0 = e_eq + d0;
+  Body& B = model.bodies()[0];
+  B.q0 = Vec3(sm * e0.x(), sm * e0.y(), 0.0);
+  // At rest in G: on the spin LOF the modal velocity cancels the frame's rotation.
+  if (spin_lof) B.v0 = -sm * om * Vec3::UnitZ().cross(Vec3(e0.x(), e0.y(), 0.0));
+  System sys(model);
+  auto integ = make_integrator("ida");
+  IntegratorSettings st;
+  st.rtol = 1e-9;
+  st.atol = 1e-13;
+  Vec q, v;
+  sys.initial_state(q, v);
+  integ->init(sys, 0.0, q, v, st);
+  Response r;
+  for (double t = dt_out; t <= t_end + 1e-12; t += dt_out) {
+    integ->advance(t, false, q, v);
+    sys.update_markers(t, q.data(), v.data());
+    const Vec3 d = sys.motion(j1).p - sys.motion(b1).p;
+    r.t.push_back(t);
+    r.d.push_back(V2(d.x(), d.y()) - e_eq);
+    r.e_end = V2(d.x(), d.y());
+    if (r.d.back().norm() > stop_amplitude) break;
+  }
+  return r;
+}
+
+// Growth rate (log-linear fit of the per-period maximum of |d|, after t_skip) and
+// whirl frequency (zero crossings of d_x) of a response.
+void measure(const Response& r, double period, double t_skip, double& growth, double& whirl) {
+  std::vector<double> tm, lm;
+  std::size_t i = 0;
+  while (i < r.t.size() && r.t[i] < t_skip) ++i;
+  while (i < r.t.size()) {
+    const double t0 = r.t[i];
+    double mx = 0.0;
+    std::size_t j = i;
+    for (; j < r.t.size() && r.t[j] < t0 + period; ++j) mx = std::max(mx, r.d[j].norm());
+    if (j >= r.t.size()) break;
+    tm.push_back(t0 + 0.5 * period);
+    lm.push_back(std::log(mx));
+    i = j;
+  }
+  double st = 0, sl = 0, stt = 0, stl = 0;
+  const double n = static_cast<double>(tm.size());
+  for (std::size_t k = 0; k < tm.size(); ++k)
+    st += tm[k], sl += lm[k], stt += tm[k] * tm[k], stl += tm[k] * lm[k];
+  growth = (n * stl - st * sl) / (n * stt - st * st);
+  double first = -1, last = -1;
+  int crossings = 0;
+  for (std::size_t k = 1; k < r.t.size(); ++k) {
+    if (r.t[k] < t_skip) continue;
+    if ((r.d[k - 1].x() < 0) != (r.d[k].x() < 0)) {
+      const double tc =
+          r.t[k - 1] + (r.t[k] - r.t[k - 1]) * r.d[k - 1].x() / (r.d[k - 1].x() - r.d[k].x());
+      if (first < 0) first = tc;
+      last = tc;
+      ++crossings;
+    }
+  }
+  whirl = M_PI * (crossings - 1) / (last - first);
+}
+
+}  // namespace
+
+TEST(JournalBearing, RigidRotorWhirl) {
+  RotorCase rc;
+  const double om_th = onset_speed(rc, 300.0, 3000.0);
+  const Linear at_th = linear_rotor(rc, om_th);
+  std::printf("(6) predicted whirl onset: %.4f rad/s (eps %.4f, whirl ratio %.4f)\n", om_th,
+              at_th.eps, at_th.whirl / om_th);
+  const double c = rc.bearing.clearance;
+
+  // Below the threshold: settles at the static equilibrium of the quartic.
+  {
+    const double om = 0.8 * om_th;
+    const Linear l = linear_rotor(rc, om);
+    const Response r = run_rotor(rc, om, l.e_eq, V2(0.1 * c, 0.05 * c), 1.0, 1e-3, false);
+    const JournalBearingParams& p = rc.bearing;
+    const double Ss =
+        2 * p.radius * om * p.viscosity * std::pow(p.width, 3) / (8 * c * c * 0.5 * rc.mass * rc.g);
+    const double eps_ref = eps_from_quartic(Ss);
+    const double phi_ref = std::atan(M_PI * std::sqrt(1 - eps_ref * eps_ref) / (4 * eps_ref));
+    const double eps = r.e_end.norm() / c, phi = std::acos(-r.e_end.y() / r.e_end.norm());
+    std::printf(
+        "  om = %.1f (0.8 onset): settled eps %.9f (quartic %.9f, err %.2e), attitude %.9f "
+        "(ref %.9f, err %.2e)\n",
+        om, eps, eps_ref, eps - eps_ref, phi, phi_ref, phi - phi_ref);
+    EXPECT_NEAR(eps, eps_ref, 1e-6);
+    EXPECT_NEAR(phi, phi_ref, 1e-6);
+  }
+
+  // Growth rates just below and above the threshold: measured onset by interpolation.
+  std::vector<double> oms = {0.95 * om_th, 1.05 * om_th}, gm;
+  for (double om : oms) {
+    const Linear l = linear_rotor(rc, om);
+    const double period = 2 * M_PI / l.whirl;
+    const Response r =
+        run_rotor(rc, om, l.e_eq, V2(2e-4 * c, 0.0), 60 * period, period / 50, false);
+    double g, w;
+    measure(r, period, 10 * period, g, w);
+    std::printf(
+        "  om = %.1f: growth measured %+.4f 1/s, linear %+.4f 1/s; whirl %.3f rad/s "
+        "(ratio %.4f), linear %.3f rad/s\n",
+        om, g, l.growth, w, w / om, l.whirl);
+    EXPECT_NEAR(g, l.growth, 0.02 * std::abs(l.growth) + 0.05);
+    EXPECT_NEAR(w, l.whirl, 2e-3 * l.whirl);
+    gm.push_back(g);
+  }
+  const double om_meas = oms[0] - gm[0] * (oms[1] - oms[0]) / (gm[1] - gm[0]);
+  std::printf("  whirl onset: measured %.3f rad/s, predicted %.3f rad/s, rel err %+.2e\n", om_meas,
+              om_th, om_meas / om_th - 1);
+  EXPECT_NEAR(om_meas, om_th, 5e-3 * om_th);
+
+  // Well above the threshold: the orbit grows and whirls at about half speed;
+  // the same on a spin LOF (journal spin from the body's frame, not a parameter).
+  for (bool spin : {false, true}) {
+    const double om = 1.3 * om_th;
+    const Linear l = linear_rotor(rc, om);
+    const double period = 2 * M_PI / l.whirl;
+    const Response r =
+        run_rotor(rc, om, l.e_eq, V2(1e-3 * c, 0.0), 80 * period, period / 50, spin, 0.3 * c);
+    double g, w;
+    measure(r, period, 5 * period, g, w);
+    std::printf(
+        "  om = %.1f (1.3 onset, %s LOF): growth %+.3f 1/s (linear %+.3f), whirl ratio "
+        "%.4f (linear %.4f), final |d|/c %.3f at t = %.3f s\n",
+        om, spin ? "spin" : "fixed", g, l.growth, w / om, l.whirl / om, r.d.back().norm() / c,
+        r.t.back());
+    EXPECT_GT(g, 0.0);
+    EXPECT_NEAR(w / om, l.whirl / om, 0.02);
+    EXPECT_GT(w / om, 0.4);
+    EXPECT_LT(w / om, 0.55);
+  }
+}
+
+// Output channels: bearing-frame force, eps, attitude, minimum film, peak pressure
+// (checked against a brute-force scan of p = 6 eta x (B - x) (W . u) / h^3).
+TEST(JournalBearing, Channels) {
+  const JournalBearingParams p = base_params(false);
+  const JournalBearing jb = make_bearing(p);
+  const double c = p.clearance, om = 400.0;
+  MarkerMotion m[2];
+  m[0].R = rotation_from_vector(Vec3(0.0, 0.0, 0.4));  // bearing axes rotated about z
+  m[1].p = m[0].R * Vec3(0.3 * c, -0.6 * c, 0.0);
+  m[1].v = m[0].R * Vec3(0.01, 0.02, 0.0);
+  m[1].w = Vec3(0, 0, om);
+  std::vector<double> ch(jb.channels().size());
+  jb.channel_values(0, m, ch.data());
+  MarkerLoad l[2];
+  jb.evaluate(0, m, l);
+  const Vec3 F = m[0].R.transpose() * l[1].F;
+  EXPECT_NEAR(ch[0], F.x(), 1e-12 * F.norm());
+  EXPECT_NEAR(ch[1], F.y(), 1e-12 * F.norm());
+  const double eps = std::sqrt(0.45);
+  EXPECT_NEAR(ch[4], eps, 1e-12);
+  EXPECT_NEAR(ch[5], std::atan2(-0.6, 0.3), 1e-12);
+  EXPECT_NEAR(ch[6], c * (1 - eps), 1e-12 * c);
+  const V2 e(0.3 * c, -0.6 * c), W = V2(0.01, 0.02) - 0.5 * om * V2(0.6 * c, 0.3 * c);
+  double pmax = 0.0;
+  for (int i = 0; i < 200000; ++i) {
+    const double phi = 2 * M_PI * i / 200000.0;
+    const V2 u(std::cos(phi), std::sin(phi));
+    const double h = c - e.dot(u);
+    pmax = std::max(pmax, 1.5 * p.viscosity * p.width * p.width * W.dot(u) / (h * h * h));
+  }
+  std::printf("peak pressure %.6e Pa (scan %.6e Pa)\n", ch[7], pmax);
+  EXPECT_NEAR(ch[7], pmax, 1e-6 * pmax);
+  EXPECT_GE(ch[7], pmax);
+}

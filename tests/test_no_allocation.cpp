@@ -1,0 +1,74 @@
+// The residual and Jacobian evaluations allocate no memory once a run has
+// started (issue: "allocate no memory once a run has started"). Counts calls
+// of the global operator new around warm evaluations.
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <cstdlib>
+#include <new>
+
+#include "elements/spring_damper.h"
+#include "random_body.h"
+#include "solver/first_order.h"
+#include "solver/system.h"
+
+namespace {
+std::atomic<long> g_news{0};
+}
+
+// The replacement operators pair malloc with free; GCC cannot see that pairing.
+#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
+void* operator new(std::size_t n) {
+  ++g_news;
+  if (void* p = std::malloc(n ? n : 1)) return p;
+  throw std::bad_alloc();
+}
+void operator delete(void* p) noexcept { std::free(p); }
+void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+
+using namespace evas;
+
+TEST(NoAllocation, ResidualAndJacobianAfterWarmUp) {
+  Model model;
+  auto a = std::make_shared<ModalBody>(test_bodies::random_body(40, 20, 1));
+  auto b = std::make_shared<ModalBody>(test_bodies::random_body(40, 30, 2));
+  model.add_body("a", a,
+                 Lof::spin(Vec3::Zero(), Mat3::Identity(), Vec3::UnitX(), 0, {0.0}, {300.0}));
+  model.add_body("b", b, Lof::fixed(Vec3::Zero(), Mat3::Identity()));
+  const int ma = model.add_marker(make_set_marker("a", 0, *a, a->node_sets.at("first4"), {}));
+  const int mb = model.add_marker(make_node_marker("b", 1, *b, b->node_ids[3]));
+  const int g = model.add_marker(make_ground_marker("g", Vec3::Zero(), Mat3::Identity()));
+  model.add_element(std::make_unique<SpringDamper>(
+      "k", std::vector<int>{ma, mb}, Vec3(1e6, 1e6, 1e6), Vec3(10, 10, 10), Vec3(1, 1, 1),
+      Vec3::Zero(), Vec3::Zero(), Vec3::Zero()));
+  model.add_element(std::make_unique<SpringDamper>(
+      "g", std::vector<int>{g, mb}, Vec3(1e6, 1e6, 1e6), Vec3(10, 10, 10), Vec3::Zero(),
+      Vec3::Zero(), Vec3::Zero(), Vec3::Zero()));
+  System sys(model);
+  FirstOrderForm fo(sys);
+  const int n = sys.size();
+  Vec q = Vec::Random(n) * 1e-4, v = Vec::Random(n), f(n);
+  SpMat K = sys.jacobian_pattern(), C = sys.jacobian_pattern();
+  Vec y(2 * n), yd(2 * n), F(2 * n);
+  y << q, v;
+  yd.setRandom();
+  SpMat Jr = fo.residual_pattern(), Je = fo.rhs_pattern();
+  // warm up
+  sys.force(0.1, q.data(), v.data(), f.data());
+  sys.force_jacobian(0.1, q.data(), v.data(), K, C);
+  fo.residual(0.1, y.data(), yd.data(), F.data());
+  fo.residual_jacobian(0.1, y.data(), 2.0, Jr);
+  fo.rhs(0.1, y.data(), F.data());
+  fo.rhs_jacobian(0.1, y.data(), Je);
+  const long before = g_news.load();
+  for (int k = 0; k < 10; ++k) {
+    const double t = 0.2 + 0.01 * k;
+    sys.force(t, q.data(), v.data(), f.data());
+    sys.force_jacobian(t, q.data(), v.data(), K, C);
+    fo.residual(t, y.data(), yd.data(), F.data());
+    fo.residual_jacobian(t, y.data(), 1.5, Jr);
+    fo.rhs(t, y.data(), F.data());
+    fo.rhs_jacobian(t, y.data(), Je);
+  }
+  EXPECT_EQ(g_news.load() - before, 0) << "heap allocations in residual/Jacobian evaluations";
+}

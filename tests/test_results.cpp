@@ -1,0 +1,160 @@
+// Results files: round trip, partial files after a failure, non-finite values
+// rejected, summary JSON and CSV export.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include "io/results.h"
+
+using namespace evas;
+
+namespace {
+
+std::string tmp_path(const std::string& name) {
+  return ::testing::TempDir() + "evas_test_results_" + name;
+}
+
+ResultsWriter::Options options(int flush_rows = 256) {
+  ResultsWriter::Options o;
+  o.scene_text = "name: test\n# a comment with \"quotes\"\n";
+  o.integrator = "ida";
+  o.grid = "time";
+  o.flush_rows = flush_rows;
+  o.flush_seconds = 1e9;  // only row-count flushes: deterministic tests
+  return o;
+}
+
+std::vector<Channel> two_channels() { return {{"a.px", "m"}, {"k1.force_x", "N"}}; }
+
+std::string read_text(const std::string& path) {
+  std::ifstream f(path);
+  std::stringstream ss;
+  ss << f.rdbuf();
+  return ss.str();
+}
+
+}  // namespace
+
+TEST(Results, RoundTrip) {
+  const std::string path = tmp_path("roundtrip.h5");
+  IntegratorStats st;
+  st.steps = 123;
+  st.wall_seconds = 0.5;
+  {
+    ResultsWriter w(path, two_channels(), options(7));
+    for (int i = 0; i < 50; ++i) w.append(1e-3 * i, {std::sin(0.1 * i), 10.0 * i});
+    EXPECT_EQ(w.rows(), 50);
+    w.finish(st, "completed");
+  }
+  const ResultsData d = read_results(path);
+  ASSERT_EQ(d.time.size(), 50u);
+  ASSERT_EQ(d.values.rows(), 50);
+  ASSERT_EQ(d.values.cols(), 2);
+  EXPECT_EQ(d.names, (std::vector<std::string>{"a.px", "k1.force_x"}));
+  EXPECT_EQ(d.units, (std::vector<std::string>{"m", "N"}));
+  EXPECT_EQ(d.status, "completed");
+  EXPECT_EQ(d.integrator, "ida");
+  EXPECT_EQ(d.grid, "time");
+  EXPECT_EQ(d.scene, options().scene_text);
+  for (int i = 0; i < 50; ++i) {
+    EXPECT_EQ(d.time[i], 1e-3 * i);
+    EXPECT_EQ(d.values(i, 0), std::sin(0.1 * i));
+    EXPECT_EQ(d.values(i, 1), 10.0 * i);
+  }
+  h5::Handle f(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose);
+  h5::Handle g(H5Gopen2(f, "/stats", H5P_DEFAULT), H5Gclose);
+  EXPECT_EQ(h5::read_int_attribute(g, "steps"), 123);
+  EXPECT_EQ(h5::read_double_attribute(g, "wall_seconds"), 0.5);
+}
+
+TEST(Results, PartialFileAfterFailure) {
+  // The writer is destroyed without finish(): everything appended is readable
+  // and the status says the run never completed.
+  const std::string path = tmp_path("partial.h5");
+  {
+    ResultsWriter w(path, two_channels(), options(4));
+    for (int i = 0; i < 10; ++i) w.append(0.1 * i, {1.0 * i, -1.0 * i});
+  }
+  const ResultsData d = read_results(path);
+  EXPECT_EQ(d.time.size(), 10u);
+  EXPECT_EQ(d.values(9, 1), -9.0);
+  EXPECT_EQ(d.status, "running");
+}
+
+TEST(Results, RowsFlushedBeforeDestructionAreOnDisk) {
+  // While the writer is alive, flushed rows can be read by another opener.
+  const std::string path = tmp_path("live.h5");
+  ResultsWriter w(path, two_channels(), options(5));
+  for (int i = 0; i < 12; ++i) w.append(0.1 * i, {1.0, 2.0});
+  const ResultsData d = read_results(path);
+  EXPECT_EQ(d.time.size(), 10u);  // two full blocks of 5 flushed, 2 rows still buffered
+}
+
+TEST(Results, NonFiniteRejected) {
+  const std::string path = tmp_path("nan.h5");
+  {
+    ResultsWriter w(path, two_channels(), options(100));
+    w.append(0.0, {1.0, 2.0});
+    w.append(0.5, {1.5, 2.5});
+    try {
+      w.append(0.75, {0.0, std::nan("")});
+      FAIL() << "NaN accepted";
+    } catch (const RunError& e) {
+      const std::string msg = e.what();
+      EXPECT_NE(msg.find("k1.force_x"), std::string::npos) << msg;
+      EXPECT_NE(msg.find("0.75"), std::string::npos) << msg;
+    }
+    EXPECT_THROW(w.append(1.0, {INFINITY, 0.0}), RunError);
+    // Rows before the bad one are already on disk.
+    EXPECT_EQ(read_results(path).time.size(), 2u);
+    w.finish(IntegratorStats{}, "failed: channel 'k1.force_x' is NaN");
+  }
+  const ResultsData d = read_results(path);
+  ASSERT_EQ(d.time.size(), 2u);
+  EXPECT_TRUE(d.values.allFinite());
+  EXPECT_EQ(d.status, "failed: channel 'k1.force_x' is NaN");
+}
+
+TEST(Results, CsvExport) {
+  const std::string path = tmp_path("csv.h5");
+  {
+    ResultsWriter w(path, two_channels(), options());
+    w.append(0.0, {0.25, -1.0});
+    w.append(0.001, {0.5, 3e5});
+    w.finish(IntegratorStats{}, "completed");
+  }
+  const std::string csv = tmp_path("out.csv");
+  export_csv(path, csv);
+  EXPECT_EQ(read_text(csv), "time[s],a.px[m],k1.force_x[N]\n0,0.25,-1\n0.001,0.5,300000\n");
+}
+
+TEST(Results, SummaryJson) {
+  RunSummary s;
+  s.scene = "two \"beams\"";
+  s.integrator = "ida";
+  s.status = "completed";
+  s.t_end = 0.1;
+  s.t_reached = 0.1;
+  s.channels = two_channels();
+  s.channel_summary = {{-1.0, 2.0, 1.5, 10}, {0.0, 0.0, 0.0, 0}};
+  const std::string path = tmp_path("summary.json");
+  write_summary_json(path, s);
+  const std::string text = read_text(path);
+  EXPECT_NE(text.find("\"scene\": \"two \\\"beams\\\"\""), std::string::npos) << text;
+  EXPECT_NE(text.find("\"status\": \"completed\""), std::string::npos);
+  EXPECT_NE(text.find("\"name\": \"a.px\", \"unit\": \"m\", \"min\": -1, \"max\": 2, \"rms\": 1.5"),
+            std::string::npos)
+      << text;
+  EXPECT_NE(text.find("\"min\": null"), std::string::npos);
+}
+
+TEST(Results, ReadErrorsNameTheFile) {
+  try {
+    read_results(tmp_path("nothing.h5"));
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("nothing.h5"), std::string::npos);
+  }
+}

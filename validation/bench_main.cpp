@@ -1,0 +1,206 @@
+// evas_bench: measured cost tables for docs/performance.md.
+//  1. One evaluation of Eq. 1 for one body: invariant form (O(n^2)) against the
+//     paper's literal node sums (O(N n)), for N = 1k, 10k, 100k nodes.
+//  2. IDA with KLU against IDA with dense LU as the number of modes grows, on a
+//     chain of flexible bodies coupled by spring-dampers.
+// Times are the minimum over repeats after a warm-up; ratios measured in one run
+// are what the document compares (the machine is shared and noisy).
+#include <chrono>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <random>
+#include <sstream>
+
+#include "../tests/random_body.h"
+#include "elements/spring_damper.h"
+#include "integrators/integrator.h"
+#include "solver/invariants.h"
+#include "solver/system.h"
+
+using namespace evas;
+using Clock = std::chrono::steady_clock;
+
+namespace {
+
+template <class F>
+double min_time(F&& f, int repeats) {
+  f();  // warm-up
+  double best = 1e300;
+  for (int r = 0; r < repeats; ++r) {
+    const auto t0 = Clock::now();
+    f();
+    best = std::min(best, std::chrono::duration<double>(Clock::now() - t0).count());
+  }
+  return best;
+}
+
+// A body with N nodes and n random (not orthonormal) modes: the cost of both
+// evaluations does not depend on the values.
+ModalBody bench_body(int N, int n) {
+  ModalBody b;
+  b.name = "bench";
+  std::mt19937 gen(1);
+  std::uniform_real_distribution<double> U(-1, 1);
+  b.s.resize(N, 3);
+  std::vector<Triplet> t;
+  for (int i = 0; i < N; ++i) {
+    b.node_ids.push_back(i + 1);
+    b.s.row(i) << U(gen), U(gen), U(gen);
+    t.emplace_back(i, i, 1.0 + 0.1 * U(gen));
+  }
+  b.mass.resize(N, N);
+  b.mass.setFromTriplets(t.begin(), t.end());
+  b.modes = Mat::NullaryExpr(3 * N, n, [&]() { return U(gen); });
+  b.eigenvalues = Vec::Constant(n, 1e4);
+  b.damping = Vec::Constant(n, 1.0);
+  b.kinds.assign(n, ModeKind::Elastic);
+  return b;
+}
+
+std::string residual_table() {
+  std::ostringstream os;
+  const int n = 48;  // the paper's crankshaft: 6 rigid + 42 elastic modes
+  os << "| nodes N | modes n | invariant form [us] | literal node sums [us] | literal / invariant "
+        "|\n|---:|---:|---:|---:|---:|\n";
+  for (int N : {1000, 10000, 100000}) {
+    const ModalBody b = bench_body(N, n);
+    const ModalInvariants inv = compute_invariants(b);
+    const Mat3 A = rotation_from_vector(Vec3(0.1, 0.2, 0.3));
+    const Vec3 a(1, 2, 3), w(300, 10, 5), al(1e3, 0, 0);
+    const Vec q = Vec::Random(n) * 1e-4, qd = Vec::Random(n), qdd = Vec::Random(n);
+    const Eigen::Matrix<double, Eigen::Dynamic, 3> F =
+        Eigen::Matrix<double, Eigen::Dynamic, 3>::Zero(N, 3);
+    Vec f0(n), r(n);
+    Mat KW(n, n), G(n, n);
+    const int reps_inv = 2000;
+    const double t_inv =
+        min_time(
+            [&] {
+              for (int k = 0; k < reps_inv; ++k) {
+                frame_terms(inv, A.transpose() * a, A.transpose() * w, A.transpose() * al, f0, KW,
+                            G);
+                r = qdd + f0 + b.eigenvalues.cwiseProduct(q) + b.damping.cwiseProduct(qd);
+                r.noalias() += KW * q;
+                r.noalias() += G * qd;
+              }
+            },
+            5) /
+        reps_inv;
+    Vec lit;
+    const int reps_lit = N >= 100000 ? 1 : 5;
+    const double t_lit = min_time(
+                             [&] {
+                               for (int k = 0; k < reps_lit; ++k)
+                                 lit = eq1_literal(b, A, a, w, al, q, qd, qdd, F);
+                             },
+                             3) /
+                         reps_lit;
+    const double diff = (lit - r).cwiseAbs().maxCoeff() / lit.cwiseAbs().maxCoeff();
+    os << "| " << N << " | " << n << " | " << std::fixed << std::setprecision(1) << t_inv * 1e6
+       << " | " << t_lit * 1e6 << " | " << std::setprecision(0) << t_lit / t_inv << " |\n";
+    std::cerr << "residual N=" << N << " done (relative difference of the two forms "
+              << std::scientific << diff << ")\n";
+    if (diff > 1e-9) throw std::runtime_error("invariant and literal forms disagree");
+  }
+  return os.str();
+}
+
+// Chain of `nb` bodies of n modes each, the first spinning, neighbours coupled.
+std::unique_ptr<Model> chain(int nb, int n_el) {
+  auto m = std::make_unique<Model>();
+  std::vector<int> first, last;
+  for (int b = 0; b < nb; ++b) {
+    auto body = std::make_shared<ModalBody>(test_bodies::random_body(30, n_el, 100 + b));
+    const Lof lof = b == 0
+                        ? Lof::spin(Vec3::Zero(), Mat3::Identity(), Vec3::UnitX(), 0, {0.0}, {50.0})
+                        : Lof::fixed(Vec3(0, 0, 0), Mat3::Identity());
+    m->add_body("b" + std::to_string(b), body, lof);
+    first.push_back(
+        m->add_marker(make_node_marker("f" + std::to_string(b), b, *body, body->node_ids.front())));
+    last.push_back(
+        m->add_marker(make_node_marker("l" + std::to_string(b), b, *body, body->node_ids.back())));
+  }
+  const int g = m->add_marker(make_ground_marker("g", Vec3::Zero(), Mat3::Identity()));
+  const Vec3 k(1e5, 1e5, 1e5), c(10, 10, 10);
+  for (int b = 0; b + 1 < nb; ++b)
+    m->add_element(std::make_unique<SpringDamper>(
+        "k" + std::to_string(b), std::vector<int>{last[b], first[b + 1]}, k, c, Vec3::Zero(),
+        Vec3::Zero(), Vec3::Zero(), Vec3::Zero()));
+  m->add_element(std::make_unique<SpringDamper>("g", std::vector<int>{g, first[0]}, k, c,
+                                                Vec3::Zero(), Vec3::Zero(), Vec3::Zero(),
+                                                Vec3::Zero()));
+  m->bodies()[0].v0 = Vec::Constant(m->bodies()[0].n(), 0.01);
+  return m;
+}
+
+std::string klu_table() {
+  std::ostringstream os;
+  os << "| bodies | modes per body | states (2n) | Jacobian nonzeros | dense LU [s] | KLU [s] | "
+        "dense / KLU | steps (dense, KLU) |\n|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+  const int nb = 8;
+  for (int n_el : {4, 14, 34, 74}) {
+    double times[2];
+    long steps[2];
+    long nnz = 0;
+    for (int s = 0; s < 2; ++s) {
+      auto model = chain(nb, n_el);
+      System sys(*model);
+      nnz = sys.jacobian_pattern().nonZeros();
+      IntegratorSettings set;
+      set.name = "ida";
+      set.rtol = 1e-6;
+      set.atol = 1e-9;
+      set.linear_solver = s == 0 ? "dense" : "klu";
+      std::vector<double> outs;
+      for (int k = 1; k <= 20; ++k) outs.push_back(0.005 * k);
+      times[s] = min_time(
+          [&] {
+            auto integ = make_integrator("ida");
+            Vec q, v;
+            sys.initial_state(q, v);
+            integ->init(sys, 0.0, q, v, set);
+            integrate(*integ, sys, 0.0, outs, [](double, const Vec&, const Vec&) {});
+            steps[s] = integ->stats().steps;
+          },
+          2);
+    }
+    const int states = 2 * nb * (n_el + 6);
+    os << "| " << nb << " | " << n_el + 6 << " | " << states << " | " << 2 * nnz + states << " | "
+       << std::fixed << std::setprecision(3) << times[0] << " | " << times[1] << " | "
+       << std::setprecision(2) << times[0] / times[1] << " | " << steps[0] << ", " << steps[1]
+       << " |\n";
+    std::cerr << "ida n=" << n_el + 6 << " done\n";
+  }
+  return os.str();
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const std::string out = argc > 1 ? argv[1] : "";
+  std::ostringstream doc;
+  doc << "# Performance\n\n"
+      << "Measured by `make bench` (`evas_bench`), which regenerates this file. Times are the "
+         "minimum over repeats after a warm-up on the machine that ran it (2 cores, shared); "
+         "compare the ratios within a table, not absolute times across machines.\n\n"
+      << "## One evaluation of Eq. 1: invariants against literal node sums\n\n"
+      << "One body, lumped masses, all frame terms active (spin, Euler, LOF acceleration). "
+         "The invariant form costs O(n^2) whatever the node count; the literal form, the "
+         "paper's sums over nodes, costs O(N n). Both give the same vector (checked in the "
+         "run, relative difference < 1e-9, and in `tests/test_invariants.cpp`).\n\n"
+      << residual_table() << "\n"
+      << "## IDA: KLU against dense LU as the number of modes grows\n\n"
+      << "A chain of 8 flexible bodies (6 rigid + elastic modes each), the first spinning at "
+         "50 rad/s, neighbours coupled by spring-dampers, 0.1 s simulated, rtol 1e-6, atol "
+         "1e-9, analytic Jacobian. The iteration matrix has dense diagonal body blocks and "
+         "coupling blocks only between neighbours.\n\n"
+      << klu_table() << "\n";
+  std::cout << doc.str();
+  if (!out.empty()) {
+    std::ofstream f(out);
+    f << doc.str();
+    std::cerr << "wrote " << out << "\n";
+  }
+  return 0;
+}
