@@ -155,24 +155,6 @@ void Belt::channel_values(double, const MarkerMotion* m, double* out) const {
   }
 }
 
-namespace {
-
-ParamSpec param(const std::string& key, ParamSpec::Kind kind, const std::string& unit,
-                const std::string& doc, std::vector<double> def, bool required = false,
-                double min = -1e300) {
-  ParamSpec p;
-  p.key = key;
-  p.kind = kind;
-  p.unit = unit;
-  p.doc = doc;
-  p.default_value = std::move(def);
-  p.required = required;
-  p.min = min;
-  return p;
-}
-
-}  // namespace
-
 ElementType belt_element_type() {
   using K = ParamSpec::Kind;
   ElementType t;
@@ -185,20 +167,22 @@ ElementType belt_element_type() {
       "tension).";
   t.num_markers = 0;
   t.params = {
-      param("tension", K::Scalar, "N", "belt tension T_B", {}, true, 0.0),
-      param("radii", K::List, "m",
-            "signed pitch radius per pulley marker (negative: wrapped clockwise about the "
-            "normal, e.g. a back-side idler)",
-            {}, true),
-      param("normal", K::Vector3, "-", "belt plane normal (frame_marker's axes)", {}, true),
-      param("order", K::List, "-",
-            "wrap order: pulley indices 0..k-1 into the marker list (empty = marker order)", {}),
-      param("frame_marker", K::Scalar, "-",
-            "index of the marker whose axes carry normal and reference (-1 = ground axes)", {-1.0},
-            false, -1.0),
-      param("reference", K::Vector3, "-",
-            "in-plane x axis for the output components and span angles (0 = automatic)",
-            {0.0, 0.0, 0.0}),
+      vector_param("tension", K::Scalar, "N", "belt tension T_B", {}, 0.0, true),
+      vector_param("radii", K::List, "m",
+                   "signed pitch radius per pulley marker (negative: wrapped clockwise about the "
+                   "normal, e.g. a back-side idler)",
+                   {}, -1e300, true),
+      vector_param("normal", K::Vector3, "-", "belt plane normal (frame_marker's axes)", {}, -1e300,
+                   true),
+      vector_param("order", K::List, "-",
+                   "wrap order: pulley indices 0..k-1 into the marker list (empty = marker order)",
+                   {}),
+      vector_param("frame_marker", K::Scalar, "-",
+                   "index of the marker whose axes carry normal and reference (-1 = ground axes)",
+                   {-1.0}, -1.0),
+      vector_param("reference", K::Vector3, "-",
+                   "in-plane x axis for the output components and span angles (0 = automatic)",
+                   {0.0, 0.0, 0.0}),
   };
   t.make = [](const std::string& name, const std::vector<int>& markers,
               const ParamValues& v) -> std::unique_ptr<Element> {

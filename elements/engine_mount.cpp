@@ -83,33 +83,6 @@ void EngineMount::channel_values(double t, const MarkerMotion* m, double* out) c
   }
 }
 
-namespace {
-
-ParamSpec param(const std::string& key, ParamSpec::Kind kind, const std::string& unit,
-                const std::string& doc, std::vector<double> def, double min = -1e300) {
-  ParamSpec p;
-  p.key = key;
-  p.kind = kind;
-  p.unit = unit;
-  p.doc = doc;
-  p.default_value = std::move(def);
-  p.min = min;
-  return p;
-}
-
-ParamSpec text_param(const std::string& key, const std::string& doc,
-                     std::vector<std::string> choices, const std::string& def) {
-  ParamSpec p;
-  p.key = key;
-  p.kind = ParamSpec::Kind::Text;
-  p.doc = doc;
-  p.choices = std::move(choices);
-  p.default_text = def;
-  return p;
-}
-
-}  // namespace
-
 ElementType engine_mount_element_type() {
   using K = ParamSpec::Kind;
   ElementType t;
@@ -124,34 +97,38 @@ ElementType engine_mount_element_type() {
   t.params = {
       text_param("law", "force-deflection law of all three axes", {"polynomial", "table"},
                  "polynomial"),
-      param("k_x", K::List, "N/m, N/m^2, N/m^3, ...",
-            "polynomial coefficients k1, k2, k3, ... of mount axis x (law: polynomial)", {0.0}),
-      param("k_y", K::List, "N/m, N/m^2, N/m^3, ...", "polynomial coefficients of mount axis y",
-            {0.0}),
-      param("k_z", K::List, "N/m, N/m^2, N/m^3, ...", "polynomial coefficients of mount axis z",
-            {0.0}),
-      param("table_x", K::List, "m, N",
-            "(deflection, force) pairs of axis x, deflection increasing (law: table)", {}),
-      param("table_y", K::List, "m, N", "(deflection, force) pairs of axis y", {}),
-      param("table_z", K::List, "m, N", "(deflection, force) pairs of axis z", {}),
+      vector_param("k_x", K::List, "N/m, N/m^2, N/m^3, ...",
+                   "polynomial coefficients k1, k2, k3, ... of mount axis x (law: polynomial)",
+                   {0.0}),
+      vector_param("k_y", K::List, "N/m, N/m^2, N/m^3, ...",
+                   "polynomial coefficients of mount axis y", {0.0}),
+      vector_param("k_z", K::List, "N/m, N/m^2, N/m^3, ...",
+                   "polynomial coefficients of mount axis z", {0.0}),
+      vector_param("table_x", K::List, "m, N",
+                   "(deflection, force) pairs of axis x, deflection increasing (law: table)", {}),
+      vector_param("table_y", K::List, "m, N", "(deflection, force) pairs of axis y", {}),
+      vector_param("table_z", K::List, "m, N", "(deflection, force) pairs of axis z", {}),
       text_param("interpolation",
                  "table interpolation: monotone cubic Hermite (pchip) or linear; both extrapolate "
                  "linearly with the end slope",
                  {"pchip", "linear"}, "pchip"),
-      param("damping", K::Vector3, "N s/m", "linear damping per mount axis", {0.0, 0.0, 0.0}, 0.0),
-      param("preload", K::Vector3, "N",
-            "force on the block at zero deflection (mount axes), e.g. (0, 0, m g / n) to hold the "
-            "engine at its reference position",
-            {0.0, 0.0, 0.0}),
-      param("rot_stiffness", K::Vector3, "N m/rad", "rotational stiffness per mount axis",
-            {0.0, 0.0, 0.0}, 0.0),
-      param("rot_damping", K::Vector3, "N m s/rad", "rotational damping per mount axis",
-            {0.0, 0.0, 0.0}, 0.0),
-      param("orientation", K::Vector3, "rad",
-            "rotation vector of the mount axes relative to marker 0's axes", {0.0, 0.0, 0.0}),
-      param("offset", K::Vector3, "m",
-            "position of marker 1 relative to marker 0 at zero deflection (mount axes)",
-            {0.0, 0.0, 0.0}),
+      vector_param("damping", K::Vector3, "N s/m", "linear damping per mount axis", {0.0, 0.0, 0.0},
+                   0.0),
+      vector_param(
+          "preload", K::Vector3, "N",
+          "force on the block at zero deflection (mount axes), e.g. (0, 0, m g / n) to hold the "
+          "engine at its reference position",
+          {0.0, 0.0, 0.0}),
+      vector_param("rot_stiffness", K::Vector3, "N m/rad", "rotational stiffness per mount axis",
+                   {0.0, 0.0, 0.0}, 0.0),
+      vector_param("rot_damping", K::Vector3, "N m s/rad", "rotational damping per mount axis",
+                   {0.0, 0.0, 0.0}, 0.0),
+      vector_param("orientation", K::Vector3, "rad",
+                   "rotation vector of the mount axes relative to marker 0's axes",
+                   {0.0, 0.0, 0.0}),
+      vector_param("offset", K::Vector3, "m",
+                   "position of marker 1 relative to marker 0 at zero deflection (mount axes)",
+                   {0.0, 0.0, 0.0}),
   };
   t.make = [](const std::string& name, const std::vector<int>& markers,
               const ParamValues& v) -> std::unique_ptr<Element> {

@@ -365,24 +365,6 @@ void JournalBearing::channel_values(double t, const MarkerMotion* m, double* out
   out[7] = peak_pressure(e, ed, om);
 }
 
-namespace {
-
-ParamSpec scalar(const std::string& key, const std::string& unit, const std::string& doc,
-                 bool required, double def, double min, double max = 1e300) {
-  ParamSpec p;
-  p.key = key;
-  p.kind = ParamSpec::Kind::Scalar;
-  p.unit = unit;
-  p.doc = doc;
-  p.required = required;
-  if (!required) p.default_value = {def};
-  p.min = min;
-  p.max = max;
-  return p;
-}
-
-}  // namespace
-
 ElementType journal_bearing_element_type() {
   ElementType t;
   t.type = "journal-bearing";
@@ -405,26 +387,27 @@ ElementType journal_bearing_element_type() {
   method.choices = {"ocvirk", "quadrature"};
   method.default_text = "ocvirk";
   t.params = {
-      scalar("radius", "m", "journal radius R", true, 0.0, 1e-300),
-      scalar("width", "m", "bearing width B", true, 0.0, 1e-300),
-      scalar("clearance", "m", "radial clearance c", true, 0.0, 1e-300),
-      scalar("viscosity", "Pa s", "dynamic viscosity eta of the oil", true, 0.0, 0.0),
+      scalar_param("radius", "m", "journal radius R", true, 0.0, 1e-300),
+      scalar_param("width", "m", "bearing width B", true, 0.0, 1e-300),
+      scalar_param("clearance", "m", "radial clearance c", true, 0.0, 1e-300),
+      scalar_param("viscosity", "Pa s", "dynamic viscosity eta of the oil", true, 0.0, 0.0),
       method,
-      scalar("n_delta", "-", "quadrature points in the circumferential direction (integer)", false,
-             64, 2, 4096),
-      scalar("halves", "-",
-             "1: one station; 2: two axial stations at +-B/(2 sqrt 5) (paper Fig. 6), a "
-             "tilted journal gets a moment",
-             false, 1, 1, 2),
-      scalar("eps_max", "-", "largest eccentricity ratio of the film alone", false, 0.98, 0.0,
-             0.999999),
-      scalar("contact_stiffness", "N/m^n",
-             "asperity contact coefficient k_c above eps_max (0: exceeding eps_max is an error)",
-             false, 0.0, 0.0),
-      scalar("contact_exponent", "-", "exponent n of the contact law", false, 1.5, 1.0, 10.0),
-      scalar("journal_speed", "rad/s",
-             "spin added to the relative spin (journal bodies that carry no rotation)", false, 0.0,
-             -1e300),
+      scalar_param("n_delta", "-", "quadrature points in the circumferential direction (integer)",
+                   false, 64, 2, 4096),
+      scalar_param("halves", "-",
+                   "1: one station; 2: two axial stations at +-B/(2 sqrt 5) (paper Fig. 6), a "
+                   "tilted journal gets a moment",
+                   false, 1, 1, 2),
+      scalar_param("eps_max", "-", "largest eccentricity ratio of the film alone", false, 0.98, 0.0,
+                   0.999999),
+      scalar_param(
+          "contact_stiffness", "N/m^n",
+          "asperity contact coefficient k_c above eps_max (0: exceeding eps_max is an error)",
+          false, 0.0, 0.0),
+      scalar_param("contact_exponent", "-", "exponent n of the contact law", false, 1.5, 1.0, 10.0),
+      scalar_param("journal_speed", "rad/s",
+                   "spin added to the relative spin (journal bodies that carry no rotation)", false,
+                   0.0, -1e300),
   };
   t.make = [](const std::string& name, const std::vector<int>& markers, const ParamValues& v) {
     JournalBearingParams p;

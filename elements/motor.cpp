@@ -55,23 +55,6 @@ void Motor::channel_values(double t, const MarkerMotion* m, double* out) const {
   out[1] = twist;
 }
 
-namespace {
-
-ParamSpec scalar(const std::string& key, const std::string& unit, const std::string& doc,
-                 bool required, double def, double min) {
-  ParamSpec p;
-  p.key = key;
-  p.kind = ParamSpec::Kind::Scalar;
-  p.unit = unit;
-  p.doc = doc;
-  p.required = required;
-  if (!required) p.default_value = {def};
-  p.min = min;
-  return p;
-}
-
-}  // namespace
-
 ElementType motor_element_type() {
   ElementType t;
   t.type = "motor";
@@ -88,10 +71,11 @@ ElementType motor_element_type() {
   axis.doc = "rotation axis in G components (normalised; positive rotation right-handed)";
   axis.default_value = {1.0, 0.0, 0.0};
   t.params = {
-      axis, scalar("speed", "rad/s", "driver speed w (3000 rpm = 314.159 rad/s)", true, 0, -1e300),
-      scalar("initial_angle", "deg", "driver angle theta_0 at t = 0", false, 0, -1e300),
-      scalar("stiffness", "N m/rad", "torsional clutch spring K_r", true, 0, 0.0),
-      scalar("damping", "N m s/rad", "torsional damping C_r", false, 0, 0.0)};
+      axis,
+      scalar_param("speed", "rad/s", "driver speed w (3000 rpm = 314.159 rad/s)", true, 0, -1e300),
+      scalar_param("initial_angle", "deg", "driver angle theta_0 at t = 0", false, 0, -1e300),
+      scalar_param("stiffness", "N m/rad", "torsional clutch spring K_r", true, 0, 0.0),
+      scalar_param("damping", "N m s/rad", "torsional damping C_r", false, 0, 0.0)};
   t.make = [](const std::string& name, const std::vector<int>& markers, const ParamValues& v) {
     return std::make_unique<Motor>(name, markers, v.vec3("axis"), v.scalar("speed"),
                                    v.scalar("initial_angle") * M_PI / 180.0, v.scalar("stiffness"),

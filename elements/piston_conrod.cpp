@@ -155,46 +155,10 @@ void PistonConrod::channel_values(double t, const MarkerMotion*, double* out) co
 // ---------------------------------------------------------------------------
 // Declaration.
 
-namespace {
-
-ParamSpec scalar(const std::string& key, const std::string& unit, const std::string& doc,
-                 bool required, double def, double min, double max = 1e300) {
-  ParamSpec p;
-  p.key = key;
-  p.kind = ParamSpec::Kind::Scalar;
-  p.unit = unit;
-  p.doc = doc;
-  p.required = required;
-  if (!required) p.default_value = {def};
-  p.min = min;
-  p.max = max;
-  return p;
-}
-
-ParamSpec vec3(const std::string& key, const std::string& doc, const Vec3& def) {
-  ParamSpec p;
-  p.key = key;
-  p.kind = ParamSpec::Kind::Vector3;
-  p.unit = "-";
-  p.doc = doc;
-  p.default_value = {def.x(), def.y(), def.z()};
-  return p;
-}
-
-ParamSpec text(const std::string& key, const std::string& doc, const std::string& def,
-               std::vector<std::string> choices = {}) {
-  ParamSpec p;
-  p.key = key;
-  p.kind = ParamSpec::Kind::Text;
-  p.doc = doc;
-  p.default_text = def;
-  p.choices = std::move(choices);
-  return p;
-}
-
-}  // namespace
-
 ElementType piston_conrod_element_type() {
+  auto axis = [](const std::string& key, const std::string& doc, const Vec3& d) {
+    return vector_param(key, ParamSpec::Kind::Vector3, "-", doc, {d.x(), d.y(), d.z()});
+  };
   ElementType t;
   t.type = "piston-conrod";
   t.doc =
@@ -207,49 +171,54 @@ ElementType piston_conrod_element_type() {
       "Mode prescribed: explicit in time (paper Step 3). See docs/elements-piston-motor.md.";
   t.num_markers = 3;
   t.params = {
-      scalar("crank_radius", "m", "crank radius R (half the stroke)", true, 0, 1e-6),
-      scalar("conrod_length", "m", "conrod length L, pin to crankpin centres (> R)", true, 0, 1e-6),
-      scalar("bore", "m", "cylinder bore (piston area pi bore^2 / 4)", true, 0, 1e-6),
-      scalar("piston_mass", "kg", "piston with rings and pin, m_p", true, 0, 0.0),
-      scalar("conrod_reciprocating_mass", "kg", "conrod mass lumped at the pin, m_1", false, 0,
-             0.0),
-      scalar("conrod_rotating_mass", "kg", "conrod mass lumped at the crankpin, m_2", false, 0,
-             0.0),
-      vec3("cylinder_axis", "cylinder axis in block axes, from the crank axis towards the head",
+      scalar_param("crank_radius", "m", "crank radius R (half the stroke)", true, 0, 1e-6),
+      scalar_param("conrod_length", "m", "conrod length L, pin to crankpin centres (> R)", true, 0,
+                   1e-6),
+      scalar_param("bore", "m", "cylinder bore (piston area pi bore^2 / 4)", true, 0, 1e-6),
+      scalar_param("piston_mass", "kg", "piston with rings and pin, m_p", true, 0, 0.0),
+      scalar_param("conrod_reciprocating_mass", "kg", "conrod mass lumped at the pin, m_1", false,
+                   0, 0.0),
+      scalar_param("conrod_rotating_mass", "kg", "conrod mass lumped at the crankpin, m_2", false,
+                   0, 0.0),
+      axis("cylinder_axis", "cylinder axis in block axes, from the crank axis towards the head",
            Vec3::UnitZ()),
-      vec3("crank_axis",
+      axis("crank_axis",
            "crank axis in block axes; positive crank rotation is right-handed about it",
            Vec3::UnitX()),
-      scalar("firing_phase", "deg",
-             "crank angle at which this cylinder is at firing TDC (0..720; e.g. 0/180/540/360 for "
-             "an in-line four firing 1-3-4-2)",
-             false, 0, 0.0, 720.0),
-      text("mode",
-           "prescribed: theta = speed t + initial_angle (explicit in time); coupled: not "
-           "implemented yet",
-           "prescribed", {"prescribed", "coupled"}),
-      scalar("speed", "rad/s", "prescribed crank speed (3000 rpm = 314.159 rad/s)", true, 0, 0.0),
-      scalar("initial_angle", "deg", "crank angle at t = 0", false, 0, -1e6, 1e6),
-      text("pressure_file", "cylinder pressure table over 720 deg (empty: no gas force)", ""),
-      scalar("crankcase_pressure", "Pa",
-             "pressure below the piston, subtracted from the table (1e5 for an absolute table "
-             "with an atmospheric crankcase)",
-             false, 0, 0.0),
-      text("side_force",
-           "exact: exact piston acceleration; eq2: the paper's two-term series "
-           "(Eq. 2, constant speed)",
-           "exact", {"exact", "eq2"}),
-      scalar("friction_coefficient", "-", "piston-liner friction coefficient mu (F_f = mu |N|)",
-             false, 0, 0.0, 1.0),
-      scalar("friction_force", "N", "constant piston friction force F_0 (added to mu |N|)", false,
-             0, 0.0),
-      scalar("friction_velocity", "m/s",
-             "smoothing speed v_s: friction = -tanh(piston velocity / v_s) (F_0 + mu |N|)", false,
-             0.05, 1e-9),
-      scalar("liner_height", "m",
-             "height of the liner marker above the crank axis along the cylinder axis "
-             "(0: conrod_length, the middle of the pin's travel)",
-             false, 0, 0.0),
+      scalar_param(
+          "firing_phase", "deg",
+          "crank angle at which this cylinder is at firing TDC (0..720; e.g. 0/180/540/360 for "
+          "an in-line four firing 1-3-4-2)",
+          false, 0, 0.0, 720.0),
+      text_param("mode",
+                 "prescribed: theta = speed t + initial_angle (explicit in time); coupled: not "
+                 "implemented yet",
+                 {"prescribed", "coupled"}, "prescribed"),
+      scalar_param("speed", "rad/s", "prescribed crank speed (3000 rpm = 314.159 rad/s)", true, 0,
+                   0.0),
+      scalar_param("initial_angle", "deg", "crank angle at t = 0", false, 0, -1e6, 1e6),
+      text_param("pressure_file", "cylinder pressure table over 720 deg (empty: no gas force)", {},
+                 ""),
+      scalar_param(
+          "crankcase_pressure", "Pa",
+          "pressure below the piston, subtracted from the table (1e5 for an absolute table "
+          "with an atmospheric crankcase)",
+          false, 0, 0.0),
+      text_param("side_force",
+                 "exact: exact piston acceleration; eq2: the paper's two-term series "
+                 "(Eq. 2, constant speed)",
+                 {"exact", "eq2"}, "exact"),
+      scalar_param("friction_coefficient", "-",
+                   "piston-liner friction coefficient mu (F_f = mu |N|)", false, 0, 0.0, 1.0),
+      scalar_param("friction_force", "N", "constant piston friction force F_0 (added to mu |N|)",
+                   false, 0, 0.0),
+      scalar_param("friction_velocity", "m/s",
+                   "smoothing speed v_s: friction = -tanh(piston velocity / v_s) (F_0 + mu |N|)",
+                   false, 0.05, 1e-9),
+      scalar_param("liner_height", "m",
+                   "height of the liner marker above the crank axis along the cylinder axis "
+                   "(0: conrod_length, the middle of the pin's travel)",
+                   false, 0, 0.0),
   };
   t.make = [](const std::string& name, const std::vector<int>& markers, const ParamValues& v) {
     const std::string where = "piston-conrod '" + name + "'";

@@ -18,18 +18,49 @@ Vec3 ParamValues::vec3(const std::string& key) const {
   return Vec3(v.at(0), v.at(1), v.at(2));
 }
 
+ParamSpec scalar_param(const std::string& key, const std::string& unit, const std::string& doc,
+                       bool required, double def, double min, double max) {
+  ParamSpec p;
+  p.key = key;
+  p.kind = ParamSpec::Kind::Scalar;
+  p.unit = unit;
+  p.doc = doc;
+  p.required = required;
+  if (!required) p.default_value = {def};
+  p.min = min;
+  p.max = max;
+  return p;
+}
+
+ParamSpec vector_param(const std::string& key, ParamSpec::Kind kind, const std::string& unit,
+                       const std::string& doc, std::vector<double> def, double min, bool required) {
+  ParamSpec p;
+  p.key = key;
+  p.kind = kind;
+  p.unit = unit;
+  p.doc = doc;
+  p.default_value = std::move(def);
+  p.required = required;
+  p.min = min;
+  return p;
+}
+
+ParamSpec text_param(const std::string& key, const std::string& doc,
+                     std::vector<std::string> choices, const std::string& def) {
+  ParamSpec p;
+  p.key = key;
+  p.kind = ParamSpec::Kind::Text;
+  p.doc = doc;
+  p.choices = std::move(choices);
+  p.default_text = def;
+  return p;
+}
+
 namespace {
 
 ParamSpec vec3_param(const std::string& key, const std::string& unit, const std::string& doc,
                      double min = -1e300) {
-  ParamSpec p;
-  p.key = key;
-  p.kind = ParamSpec::Kind::Vector3;
-  p.unit = unit;
-  p.doc = doc;
-  p.default_value = {0.0, 0.0, 0.0};
-  p.min = min;
-  return p;
+  return vector_param(key, ParamSpec::Kind::Vector3, unit, doc, {0.0, 0.0, 0.0}, min);
 }
 
 std::vector<ElementType> make_types() {

@@ -48,6 +48,16 @@ struct ElementType {
       make;
 };
 
+/// Parameter declarations shared by every element type. `required` parameters
+/// have no default; components must lie in [min, max].
+ParamSpec scalar_param(const std::string& key, const std::string& unit, const std::string& doc,
+                       bool required, double def, double min = -1e300, double max = 1e300);
+ParamSpec vector_param(const std::string& key, ParamSpec::Kind kind, const std::string& unit,
+                       const std::string& doc, std::vector<double> def, double min = -1e300,
+                       bool required = false);
+ParamSpec text_param(const std::string& key, const std::string& doc,
+                     std::vector<std::string> choices, const std::string& def);
+
 /// All element types, in documentation order.
 const std::vector<ElementType>& element_types();
 /// Throws InputError listing the known types when `type` is unknown.

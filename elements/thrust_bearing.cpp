@@ -73,33 +73,6 @@ void ThrustBearing::channel_values(double, const MarkerMotion* m, double* out) c
   out[2] = law_.gap() - std::abs(d);
 }
 
-namespace {
-
-ParamSpec param(const std::string& key, ParamSpec::Kind kind, const std::string& unit,
-                const std::string& doc, std::vector<double> def, double min = -1e300) {
-  ParamSpec p;
-  p.key = key;
-  p.kind = kind;
-  p.unit = unit;
-  p.doc = doc;
-  p.default_value = std::move(def);
-  p.min = min;
-  return p;
-}
-
-ParamSpec text_param(const std::string& key, const std::string& doc,
-                     std::vector<std::string> choices, const std::string& def) {
-  ParamSpec p;
-  p.key = key;
-  p.kind = ParamSpec::Kind::Text;
-  p.doc = doc;
-  p.choices = std::move(choices);
-  p.default_text = def;
-  return p;
-}
-
-}  // namespace
-
 ElementType thrust_bearing_element_type() {
   using K = ParamSpec::Kind;
   ElementType t;
@@ -112,29 +85,30 @@ ElementType thrust_bearing_element_type() {
       "(damping_mode contact) or 1 (always).";
   t.num_markers = 2;
   t.params = {
-      param("gap", K::Scalar, "m", "axial clearance on each side of the centred position", {0.0},
-            0.0),
+      vector_param("gap", K::Scalar, "m", "axial clearance on each side of the centred position",
+                   {0.0}, 0.0),
       text_param("law", "contact force law", {"polynomial", "table"}, "polynomial"),
-      param("stiffness", K::List, "N/m, N/m^2, N/m^3, ...",
-            "contact law coefficients k1, k2, ... of the penetration |d| - gap (law: polynomial)",
-            {0.0}),
-      param("table", K::List, "m, N",
-            "(penetration, force) pairs, penetration increasing, force 0 at penetration 0 "
-            "(law: table)",
-            {}),
+      vector_param(
+          "stiffness", K::List, "N/m, N/m^2, N/m^3, ...",
+          "contact law coefficients k1, k2, ... of the penetration |d| - gap (law: polynomial)",
+          {0.0}),
+      vector_param("table", K::List, "m, N",
+                   "(penetration, force) pairs, penetration increasing, force 0 at penetration 0 "
+                   "(law: table)",
+                   {}),
       text_param("interpolation", "table interpolation (linear extrapolation beyond the ends)",
                  {"pchip", "linear"}, "pchip"),
-      param("smoothing", K::Scalar, "m",
-            "width of the C1 transition of force and damping at contact (0 = sharp edge)", {0.0},
-            0.0),
-      param("damping", K::Scalar, "N s/m", "axial damping", {0.0}, 0.0),
+      vector_param("smoothing", K::Scalar, "m",
+                   "width of the C1 transition of force and damping at contact (0 = sharp edge)",
+                   {0.0}, 0.0),
+      vector_param("damping", K::Scalar, "N s/m", "axial damping", {0.0}, 0.0),
       text_param("damping_mode", "damping only in contact (blended by chi) or always",
                  {"contact", "always"}, "contact"),
-      param("axis", K::Vector3, "-", "bearing axis in marker 0's axes (normalised)",
-            {0.0, 0.0, 1.0}),
-      param("offset", K::Scalar, "m",
-            "axial position of marker 1 relative to marker 0 at the centre of the clearance",
-            {0.0}),
+      vector_param("axis", K::Vector3, "-", "bearing axis in marker 0's axes (normalised)",
+                   {0.0, 0.0, 1.0}),
+      vector_param("offset", K::Scalar, "m",
+                   "axial position of marker 1 relative to marker 0 at the centre of the clearance",
+                   {0.0}),
   };
   t.make = [](const std::string& name, const std::vector<int>& markers,
               const ParamValues& v) -> std::unique_ptr<Element> {

@@ -18,7 +18,7 @@ struct BuildOptions {
   double max_frequency = 0.0;   ///< keep elastic modes below this [Hz] (0 = no cut-off)
   bool keep_rigid = true;       ///< include the 6 rigid modes first
   double damping_ratio = 0.0;   ///< modal damping ratio for elastic modes
-  std::string solver = "auto";  ///< "dense", "spectra" or "auto" (dense below 3000 DOF)
+  std::string solver = "auto";  ///< "dense", "spectra" or "auto" (Spectra from 600 DOF when truncated)
 };
 
 ModalBody build_modal_body(const std::string& name, const FeModel& fe, const BuildOptions& opt);
