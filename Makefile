@@ -5,7 +5,7 @@ DEMO_OUT ?= demo-out
 DEBS = cmake g++ make libsundials-dev libsuitesparse-dev libeigen3-dev libspectra-dev \
        libboost-program-options-dev libgtest-dev libyaml-cpp-dev libhdf5-dev gnuplot-nox
 
-.PHONY: deps build demo test bench format clean
+.PHONY: deps build demo test bench work-precision format clean
 
 deps:
 	@missing=""; for p in $(DEBS); do dpkg -s $$p >/dev/null 2>&1 || missing="$$missing $$p"; done; \
@@ -21,6 +21,8 @@ build: deps
 
 demo: build
 	./scripts/demo.sh $(BUILD) $(DEMO_OUT)
+	./$(BUILD)/validation/evas_work_precision scenes/demo.yaml $(DEMO_OUT) 0.05 > /dev/null
+	@echo "work-precision diagram of the demo scene: $(DEMO_OUT)/work_precision.png"
 
 test: build
 	cd $(BUILD) && ctest --output-on-failure -j$(JOBS)
@@ -28,6 +30,11 @@ test: build
 bench: build
 	cmake --build $(BUILD) -j$(JOBS) --target evas_bench
 	./$(BUILD)/validation/evas_bench docs/performance.md
+
+# Work-precision table and figure of the demo scene, kept in docs/.
+work-precision: build
+	mkdir -p docs/work-precision
+	./$(BUILD)/validation/evas_work_precision scenes/demo.yaml docs/work-precision 0.05
 
 format:
 	clang-format -i $$(git ls-files '*.cpp' '*.h')
