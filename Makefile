@@ -3,7 +3,8 @@ BUILD ?= build
 JOBS ?= 2
 DEMO_OUT ?= demo-out
 DEBS = cmake g++ make libsundials-dev libsuitesparse-dev libeigen3-dev libspectra-dev \
-       libboost-program-options-dev libgtest-dev libyaml-cpp-dev libhdf5-dev gnuplot-nox
+       libboost-program-options-dev libgtest-dev libyaml-cpp-dev libhdf5-dev gnuplot-nox \
+       gmsh calculix-ccx
 
 .PHONY: deps build demo test bench work-precision format clean
 

@@ -13,5 +13,6 @@ int cmd_info(const std::vector<std::string>& args);
 int cmd_export(const std::vector<std::string>& args);
 int cmd_body(const std::vector<std::string>& args);
 int cmd_elements(const std::vector<std::string>& args);
+int cmd_modal(const std::vector<std::string>& args);
 
 }  // namespace evas::cli

@@ -18,6 +18,7 @@ const char* kUsage =
     "  export RESULTS.h5   convert a results file (--csv FILE)\n"
     "  body truss OUT.h5   generate a modal-body file of a truss beam\n"
     "  elements            reference of every force element and its parameters (Markdown)\n"
+    "  modal build|import  FE pipeline (gmsh, ccx) and CalculiX import to a modal body\n"
     "\n"
     "`evas <command> --help` describes the options of each command.\n";
 
@@ -41,6 +42,7 @@ int main(int argc, char** argv) {
     if (cmd == "export") return evas::cli::cmd_export(args);
     if (cmd == "body") return evas::cli::cmd_body(args);
     if (cmd == "elements") return evas::cli::cmd_elements(args);
+    if (cmd == "modal") return evas::cli::cmd_modal(args);
   } catch (const boost::program_options::error& e) {
     std::cerr << "evas " << cmd << ": " << e.what() << " (see `evas " << cmd << " --help`)\n";
     return 1;
