@@ -159,6 +159,11 @@ ElementType piston_conrod_element_type() {
   auto axis = [](const std::string& key, const std::string& doc, const Vec3& d) {
     return vector_param(key, ParamSpec::Kind::Vector3, "-", doc, {d.x(), d.y(), d.z()});
   };
+  ParamSpec pressure_file = text_param(
+      "pressure_file",
+      "cylinder pressure table over 720 deg, relative to the scene file (empty: no gas force)", {},
+      "");
+  pressure_file.is_path = true;
   ElementType t;
   t.type = "piston-conrod";
   t.doc =
@@ -197,8 +202,7 @@ ElementType piston_conrod_element_type() {
       scalar_param("speed", "rad/s", "prescribed crank speed (3000 rpm = 314.159 rad/s)", true, 0,
                    0.0),
       scalar_param("initial_angle", "deg", "crank angle at t = 0", false, 0, -1e6, 1e6),
-      text_param("pressure_file", "cylinder pressure table over 720 deg (empty: no gas force)", {},
-                 ""),
+      pressure_file,
       scalar_param(
           "crankcase_pressure", "Pa",
           "pressure below the piston, subtracted from the table (1e5 for an absolute table "

@@ -160,7 +160,10 @@ void complete_params(const ElementType& type, ParamValues& values, const std::st
 std::string element_reference_markdown() {
   std::ostringstream os;
   for (const auto& t : element_types()) {
-    os << "### `" << t.type << "` (" << t.num_markers << " markers)\n\n" << t.doc << "\n\n";
+    os << "### `" << t.type << "` ("
+       << (t.num_markers > 0 ? std::to_string(t.num_markers) : std::string("two or more"))
+       << " markers)\n\n"
+       << t.doc << "\n\n";
     os << "| parameter | kind | unit | default | range | meaning |\n|---|---|---|---|---|---|\n";
     for (const auto& p : t.params) {
       std::ostringstream def;

@@ -24,6 +24,7 @@ struct ParamSpec {
   double min = -1e300, max = 1e300;   ///< valid range of every component
   std::vector<std::string> choices;   ///< Text: allowed values (empty = any)
   std::string default_text;
+  bool is_path = false;  ///< Text naming a file: relative paths are relative to the scene file
 };
 
 /// Validated parameter values of one element instance.

@@ -515,9 +515,13 @@ void SceneReader::read_element(const Node& e, std::size_t i, Model& model) {
   const Node markers = require(e, "markers", item);
   if (!markers.IsSequence())
     fail(markers, item, "'markers' must be a list of marker names" + got(markers));
-  if (static_cast<int>(markers.size()) != type->num_markers)
+  if (type->num_markers > 0 && static_cast<int>(markers.size()) != type->num_markers)
     fail(markers, item,
          "type '" + type->type + "' needs " + std::to_string(type->num_markers) + " markers, got " +
+             std::to_string(markers.size()));
+  if (type->num_markers <= 0 && markers.size() < 2)
+    fail(markers, item,
+         "type '" + type->type + "' needs two or more markers, got " +
              std::to_string(markers.size()));
   std::vector<int> idx;
   for (const Node& mk : markers) {
@@ -543,7 +547,10 @@ void SceneReader::read_element(const Node& e, std::size_t i, Model& model) {
       if (!spec.choices.empty() &&
           std::find(spec.choices.begin(), spec.choices.end(), v.Scalar()) == spec.choices.end())
         fail(v, item, head + " is '" + v.Scalar() + "', expected one of: " + join(spec.choices));
-      values.texts[spec.key] = v.Scalar();
+      std::string value = v.Scalar();
+      if (spec.is_path && !value.empty() && std::filesystem::path(value).is_relative())
+        value = (dir_ / value).string();  // paths are relative to the scene file
+      values.texts[spec.key] = value;
       continue;
     }
     std::vector<double> x;
