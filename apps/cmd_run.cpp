@@ -157,7 +157,11 @@ int cmd_run(const std::vector<std::string>& args) {
     }
     integ->init(sys, scene.t_start, q0, v0, set);
     integrate(*integ, sys, scene.t_start, times, [&](double t, const Vec& q, const Vec& v) {
-      if (g_interrupted) throw RunError("interrupted (Ctrl-C) at t = " + std::to_string(t) + " s");
+      if (g_interrupted) {
+        char msg[80];
+        std::snprintf(msg, sizeof msg, "interrupted (Ctrl-C) at t = %.6g s", t);
+        throw RunError(msg);
+      }
       outputs.values(t, q.data(), v.data(), row.data());
       writer.append(t, row);
       progress.update(t, integ->stats().steps);
@@ -196,10 +200,11 @@ int cmd_run(const std::vector<std::string>& args) {
     export_csv(h5path, csv);
   }
   if (!quiet || code != 0) {
-    std::cerr << "evas run: " << (code ? "failed" : "completed") << " at t = " << sum.t_reached
-              << " s: " << sum.rows << " output rows, " << stats.steps << " steps, "
-              << stats.residual_evals << " residual and " << stats.jacobian_evals
-              << " Jacobian evaluations, " << stats.wall_seconds << " s wall\n";
+    std::cerr << "evas run: " << (code ? "failed, last output" : "completed")
+              << " at t = " << sum.t_reached << " s: " << sum.rows << " output rows, "
+              << stats.steps << " steps, " << stats.residual_evals << " residual and "
+              << stats.jacobian_evals << " Jacobian evaluations, " << stats.wall_seconds
+              << " s wall\n";
     std::cerr << "  results: " << h5path << "\n  summary: " << json << "\n";
     if (!csv.empty()) std::cerr << "  csv:     " << csv << "\n";
   }

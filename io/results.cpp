@@ -202,6 +202,7 @@ std::string json_string(const std::string& s) {
 
 std::string json_number(double x) {
   if (!std::isfinite(x)) return "null";
+  if (x == 0.0) x = 0.0;  // no "-0"
   char buf[40];
   std::snprintf(buf, sizeof buf, "%.17g", x);
   return buf;
@@ -327,7 +328,8 @@ void export_csv(const std::string& h5path, const std::string& csvpath) {
     std::snprintf(buf, sizeof buf, "%.12g", d.time[r]);
     f << buf;
     for (Eigen::Index c = 0; c < d.values.cols(); ++c) {
-      std::snprintf(buf, sizeof buf, "%.12g", d.values(static_cast<Eigen::Index>(r), c));
+      const double x = d.values(static_cast<Eigen::Index>(r), c);
+      std::snprintf(buf, sizeof buf, "%.12g", x == 0.0 ? 0.0 : x);
       f << ',' << buf;
     }
     f << '\n';

@@ -1,7 +1,9 @@
 // Scene files: a valid scene builds the model it describes; bad scenes give an
 // InputError "<file>:<line>: <item>: <what>" pointing at the offending line.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
+#include <filesystem>
 #include <fstream>
 
 #include "io/body_file.h"
@@ -15,7 +17,13 @@ using namespace evas;
 
 namespace {
 
-const std::string kDir = ::testing::TempDir();
+// One directory per test process: ctest runs every case as its own process, in
+// parallel, and each writes the shared body file the scenes refer to.
+const std::string kDir = [] {
+  const std::string d = ::testing::TempDir() + "evas_scene_" + std::to_string(::getpid()) + "/";
+  std::filesystem::create_directories(d);
+  return d;
+}();
 
 // Two bodies: one generated (spinning), one read from a body file (fixed).
 const char* kScene = R"(name: two-beams
