@@ -6,7 +6,7 @@ DEBS = cmake g++ make libsundials-dev libsuitesparse-dev libeigen3-dev libspectr
        libboost-program-options-dev libgtest-dev libyaml-cpp-dev libhdf5-dev gnuplot-nox \
        gmsh calculix-ccx
 
-.PHONY: deps build demo test bench work-precision format clean
+.PHONY: deps build demo test bench work-precision docs format clean
 
 deps:
 	@missing=""; for p in $(DEBS); do dpkg -s $$p >/dev/null 2>&1 || missing="$$missing $$p"; done; \
@@ -36,6 +36,12 @@ bench: build
 work-precision: build
 	mkdir -p docs/work-precision
 	./$(BUILD)/validation/evas_work_precision scenes/demo.yaml docs/work-precision 0.05
+
+# Regenerate the parameter reference in docs/elements.md from the declarations.
+docs: build
+	{ sed '/<!-- BEGIN GENERATED: evas elements -->/q' docs/elements.md; \
+	  ./$(BUILD)/evas elements | sed '1{/^# /d;}' | sed '1{/^$$/d;}'; \
+	  echo '<!-- END GENERATED -->'; } > docs/elements.md.new && mv docs/elements.md.new docs/elements.md
 
 format:
 	clang-format -i $$(git ls-files '*.cpp' '*.h')

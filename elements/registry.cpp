@@ -179,9 +179,18 @@ std::string element_reference_markdown() {
       if (!p.choices.empty()) {
         for (std::size_t i = 0; i < p.choices.size(); ++i)
           range << (i ? " / " : "") << p.choices[i];
+      } else if (p.kind == ParamSpec::Kind::Text) {
+        range << (p.is_path ? "file path" : "text");
       } else {
-        range << (p.min > -1e299 ? std::to_string(p.min) : "-inf") << " .. "
-              << (p.max < 1e299 ? std::to_string(p.max) : "inf");
+        auto bound = [&](double x, const char* inf) {
+          if (std::abs(x) < 1e299)
+            range << x;
+          else
+            range << inf;
+        };
+        bound(p.min, "-inf");
+        range << " .. ";
+        bound(p.max, "inf");
       }
       os << "| `" << p.key << "` | " << kind_name(p.kind) << " | " << p.unit << " | " << def.str()
          << " | " << range.str() << " | " << p.doc << " |\n";
