@@ -14,11 +14,12 @@
 namespace evas {
 
 struct BuildOptions {
-  int num_elastic = 0;          ///< keep at most this many elastic modes (0 = no count limit)
-  double max_frequency = 0.0;   ///< keep elastic modes below this [Hz] (0 = no cut-off)
-  bool keep_rigid = true;       ///< include the 6 rigid modes first
-  double damping_ratio = 0.0;   ///< modal damping ratio for elastic modes
-  std::string solver = "auto";  ///< "dense", "spectra" or "auto" (Spectra from 600 DOF when truncated)
+  int num_elastic = 0;         ///< keep at most this many elastic modes (0 = no count limit)
+  double max_frequency = 0.0;  ///< keep elastic modes below this [Hz] (0 = no cut-off)
+  bool keep_rigid = true;      ///< include the 6 rigid modes first
+  double damping_ratio = 0.0;  ///< modal damping ratio for elastic modes
+  std::string solver =
+      "auto";  ///< "dense", "spectra" or "auto" (Spectra from 600 DOF when truncated)
 };
 
 ModalBody build_modal_body(const std::string& name, const FeModel& fe, const BuildOptions& opt);

@@ -131,8 +131,8 @@ TEST(SceneElements, BadParameterNamesElementAndParameter) {
     std::string from, to, element, param;
   };
   const std::vector<Bad> cases = {
-      {"clearance: 3e-5, viscosity: 0.02, halves: 2", "clearance: -3e-5, viscosity: 0.02, halves: 2",
-       "main0", "clearance"},
+      {"clearance: 3e-5, viscosity: 0.02, halves: 2",
+       "clearance: -3e-5, viscosity: 0.02, halves: 2", "main0", "clearance"},
       {"method: quadrature", "method: exact", "main1", "method"},
       {"bore: 0.02", "bore: 0", "cyl1", "bore"},
       {"speed: 314.159, stiffness: 2e4", "speed: 314.159, stiffness: fast", "dyno", "stiffness"},
