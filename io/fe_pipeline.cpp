@@ -15,6 +15,8 @@
 #include <set>
 #include <sstream>
 
+#include "solver/interface_modes.h"
+
 namespace evas {
 
 namespace fs = std::filesystem;
@@ -136,7 +138,14 @@ PipelineParams read_pipeline_params(const std::string& yaml_path) {
   }
   if (root["modes"]) {
     const YAML::Node m = root["modes"];
-    y.keys(m, "modes", {"elastic", "max_frequency", "damping_ratio", "keep_rigid", "solver"});
+    y.keys(m, "modes",
+           {"elastic", "max_frequency", "damping_ratio", "keep_rigid", "solver", "interface_sets"});
+    if (m["interface_sets"]) {
+      if (!m["interface_sets"].IsSequence())
+        y.fail(m["interface_sets"], "'interface_sets' must be a list of node-set names");
+      for (const auto& n : m["interface_sets"])
+        p.interface_sets.push_back(y.text(n, "interface_sets"));
+    }
     if (m["elastic"]) {
       const double e = y.number(m["elastic"], "elastic");
       if (e < 0 || e != std::floor(e)) y.fail(m["elastic"], "'elastic' must be an integer >= 0");
@@ -288,6 +297,12 @@ PipelineResult run_pipeline(const PipelineParams& p, bool verbose) {
         "  mesh: %d nodes, %d DOF, K %ld non-zeros\n", static_cast<int>(res.fe.node_ids.size()),
         3 * static_cast<int>(res.fe.node_ids.size()), static_cast<long>(res.fe.K.nonZeros()));
   stage("evas eigen-solution", [&] { res.body = build_modal_body(p.name, res.fe, p.build); });
+  if (!p.interface_sets.empty())
+    stage("interface modes", [&] {
+      InterfaceOptions io;
+      io.damping_ratio = p.build.damping_ratio;
+      res.body = add_interface_modes_by_name(res.fe, res.body, p.interface_sets, io);
+    });
   if (p.ccx_eigen) {
     const int n = p.ccx_modes > 0 ? p.ccx_modes : std::max(16, 6 + p.build.num_elastic + 4);
     write_ccx_deck(dir, "eigen", "mesh.inp", p.youngs, p.poisson, p.density, false, n);

@@ -25,10 +25,12 @@ struct PipelineParams {
   double poisson = 0.3;
   double density = 7.85e-9;  ///< [mass/length^3], file units (t/mm^3 for mm-t-s)
   BuildOptions build;        ///< modes kept, cut-off, damping, solver
-  bool ccx_eigen = false;    ///< also run ccx's *FREQUENCY (frd/dat) for comparison
-  int ccx_modes = 0;         ///< modes asked from ccx (0: 6 + elastic + 4, at least 16)
-  std::string work_dir;      ///< where meshes, decks, logs go (relative to the YAML)
-  std::string output;        ///< body file (relative to the YAML)
+  /// Node sets that get static correction (interface) modes, e.g. bearing journals.
+  std::vector<std::string> interface_sets;
+  bool ccx_eigen = false;  ///< also run ccx's *FREQUENCY (frd/dat) for comparison
+  int ccx_modes = 0;       ///< modes asked from ccx (0: 6 + elastic + 4, at least 16)
+  std::string work_dir;    ///< where meshes, decks, logs go (relative to the YAML)
+  std::string output;      ///< body file (relative to the YAML)
 };
 
 /// Reads the YAML parameter file; relative paths are resolved against its folder.
