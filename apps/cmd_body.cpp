@@ -9,8 +9,6 @@
 #include "solver/body_builder.h"
 #include "solver/truss.h"
 
-namespace po = boost::program_options;
-
 namespace evas::cli {
 
 int cmd_body(const std::vector<std::string>& args) {
@@ -40,24 +38,8 @@ int cmd_body(const std::vector<std::string>& args) {
                                          "keep elastic modes below this [Hz] (0 = no cut-off)")(
       "damping-ratio", po::value<double>(&opt.damping_ratio)->default_value(0.0),
       "modal damping ratio of the elastic modes")("no-rigid", "leave out the 6 rigid modes");
-  po::options_description hidden;
-  hidden.add_options()("kind", po::value<std::string>(), "body kind")(
-      "out", po::value<std::string>(), "output file");
-  po::options_description all;
-  all.add(opts).add(hidden);
-  po::positional_options_description pos;
-  pos.add("kind", 1).add("out", 1);
   po::variables_map vm;
-  po::store(po::command_line_parser(std::vector<std::string>(args.begin() + 1, args.end()))
-                .options(all)
-                .positional(pos)
-                .run(),
-            vm);
-  po::notify(vm);
-  if (vm.count("help")) {
-    std::cout << opts << "\n";
-    return 0;
-  }
+  if (parse_args(args, opts, {"kind", "out"}, vm)) return 0;
   if (!vm.count("kind") || !vm.count("out")) {
     std::cerr << "evas body: need a kind (truss) and an output file\n" << opts << "\n";
     return 1;

@@ -6,8 +6,6 @@
 #include "elements/registry.h"
 #include "io/results.h"
 
-namespace po = boost::program_options;
-
 namespace evas::cli {
 
 int cmd_export(const std::vector<std::string>& args) {
@@ -18,23 +16,8 @@ int cmd_export(const std::vector<std::string>& args) {
       "options");
   opts.add_options()("help,h", "show this help")("csv", po::value<std::string>(),
                                                  "CSV file to write");
-  po::options_description hidden;
-  hidden.add_options()("results", po::value<std::string>(), "results file");
-  po::options_description all;
-  all.add(opts).add(hidden);
-  po::positional_options_description pos;
-  pos.add("results", 1);
   po::variables_map vm;
-  po::store(po::command_line_parser(std::vector<std::string>(args.begin() + 1, args.end()))
-                .options(all)
-                .positional(pos)
-                .run(),
-            vm);
-  po::notify(vm);
-  if (vm.count("help")) {
-    std::cout << opts << "\n";
-    return 0;
-  }
+  if (parse_args(args, opts, {"results"}, vm)) return 0;
   if (!vm.count("results") || !vm.count("csv")) {
     std::cerr << "evas export: need RESULTS.h5 and --csv FILE\n" << opts << "\n";
     return 1;
@@ -55,15 +38,7 @@ int cmd_elements(const std::vector<std::string>& args) {
       "options");
   opts.add_options()("help,h", "show this help");
   po::variables_map vm;
-  po::store(po::command_line_parser(std::vector<std::string>(args.begin() + 1, args.end()))
-                .options(opts)
-                .run(),
-            vm);
-  po::notify(vm);
-  if (vm.count("help")) {
-    std::cout << opts << "\n";
-    return 0;
-  }
+  if (parse_args(args, opts, {}, vm)) return 0;
   std::cout << "# Force elements\n\n" << element_reference_markdown();
   return 0;
 }

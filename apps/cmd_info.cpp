@@ -8,8 +8,6 @@
 #include "io/body_file.h"
 #include "solver/invariants.h"
 
-namespace po = boost::program_options;
-
 namespace evas::cli {
 
 namespace {
@@ -31,23 +29,8 @@ int cmd_info(const std::vector<std::string>& args) {
       "  elastic max |R^T M phi| rigid-body participation of elastic modes (~0)\n\n"
       "options");
   opts.add_options()("help,h", "show this help");
-  po::options_description hidden;
-  hidden.add_options()("body", po::value<std::string>(), "body file");
-  po::options_description all;
-  all.add(opts).add(hidden);
-  po::positional_options_description pos;
-  pos.add("body", 1);
   po::variables_map vm;
-  po::store(po::command_line_parser(std::vector<std::string>(args.begin() + 1, args.end()))
-                .options(all)
-                .positional(pos)
-                .run(),
-            vm);
-  po::notify(vm);
-  if (vm.count("help")) {
-    std::cout << opts << "\n";
-    return 0;
-  }
+  if (parse_args(args, opts, {"body"}, vm)) return 0;
   if (!vm.count("body")) {
     std::cerr << "evas info: missing BODY file\n" << opts << "\n";
     return 1;

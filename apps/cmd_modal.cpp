@@ -11,8 +11,6 @@
 #include "io/fe_pipeline.h"
 #include "solver/body_builder.h"
 
-namespace po = boost::program_options;
-
 namespace evas::cli {
 
 int cmd_modal(const std::vector<std::string>& args);

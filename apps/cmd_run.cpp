@@ -14,8 +14,6 @@
 #include "io/scene.h"
 #include "solver/system.h"
 
-namespace po = boost::program_options;
-
 namespace evas::cli {
 
 namespace {
@@ -70,23 +68,8 @@ int cmd_run(const std::vector<std::string>& args) {
       "t-end", po::value<double>(), "end time [s] (overrides the scene)")(
       "out", po::value<std::string>(), "output directory (default out/<scene name>)")(
       "csv", "also write DIR/results.csv")("quiet,q", "no progress line");
-  po::options_description hidden;
-  hidden.add_options()("scene", po::value<std::string>(), "scene file");
-  po::options_description all;
-  all.add(opts).add(hidden);
-  po::positional_options_description pos;
-  pos.add("scene", 1);
   po::variables_map vm;
-  po::store(po::command_line_parser(std::vector<std::string>(args.begin() + 1, args.end()))
-                .options(all)
-                .positional(pos)
-                .run(),
-            vm);
-  po::notify(vm);
-  if (vm.count("help")) {
-    std::cout << opts << "\n";
-    return 0;
-  }
+  if (parse_args(args, opts, {"scene"}, vm)) return 0;
   if (!vm.count("scene")) {
     std::cerr << "evas run: missing SCENE file\n" << opts << "\n";
     return 1;

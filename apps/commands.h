@@ -3,10 +3,19 @@
 // 0 success, 1 bad input (InputError), 2 the run or the command failed.
 #pragma once
 
+#include <boost/program_options.hpp>
 #include <string>
 #include <vector>
 
 namespace evas::cli {
+
+namespace po = boost::program_options;
+
+/// Parses args[1..] against `opts` plus the positional arguments named in
+/// `positional` (one value each, in order). Returns true when --help was given
+/// (the help is printed); the command then exits 0.
+bool parse_args(const std::vector<std::string>& args, const po::options_description& opts,
+                const std::vector<std::string>& positional, po::variables_map& vm);
 
 int cmd_run(const std::vector<std::string>& args);
 int cmd_info(const std::vector<std::string>& args);
