@@ -2,30 +2,52 @@
 //
 // Steps
 //   1. Check the FE data (sizes, symmetry, finite values).
-//   2. Lowest eigenpairs of K phi = lambda M phi, M = Ms (x) I3:
-//        dense   : Eigen::GeneralizedSelfAdjointEigenSolver on the full matrices;
-//        spectra : Spectra::SymGEigsShiftSolver in shift-invert mode with a small
-//                  negative shift (the free-free K is singular, so sigma = 0 is not
-//                  usable); nev grows until the count and the frequency cut-off
-//                  are covered.
-//   3. Rigid eigenvectors. The eigenvalues with |lambda| < kRigidRel * lambda_ref
-//      (1e-8) are candidates for rigid-body modes; at most 6 are discarded. If
-//      there are more than 6 candidates (a very slender body whose softest
-//      elastic modes fall below the threshold), the 6 with the largest rigid
-//      content |R^T M phi|^2 are discarded and the others stay elastic, unless
-//      they are numerically zero (|lambda| < 1e-12 lambda_ref): then the model
-//      has a mechanism or loose nodes, reported as an InputError.
-//      lambda_ref is the largest eigenvalue of the pencil when the dense solver
-//      ran, and max(max_i K_ii / M_ii, largest returned eigenvalue) for Spectra
-//      (K_ii / M_ii is a Rayleigh quotient, hence a lower estimate of lambda_max).
-//      A clearly negative eigenvalue (below -kRigidRel * lambda_ref) means K is
-//      not positive semi-definite and is also reported. Fewer than 6 candidates
-//      (a partly supported FE model) are all discarded.
-//   4. The remaining (elastic) eigenvectors E are projected twice against the
-//      explicit rigid basis R of rigid_basis(): E <- E - R (R^T M E). The small
-//      projected eigenproblem (E^T K E) x = lambda (E^T M E) x then yields clean
-//      M-orthonormal elastic modes Phi = E x, with lambda = Phi^T K Phi diagonal
-//      to round-off (a Rayleigh-Ritz step on the projected subspace).
+//   2. Lowest eigenpairs of K phi = lambda M phi, M = Ms (x) I3. The mass of a
+//      coarse quadratic-tet mesh integrated with a reduced rule (ccx: 4 points for
+//      C3D10) is only positive semi-definite, and the free-free K is singular, so
+//      neither K nor M may be factored. Both solvers therefore work on the shifted
+//      pencil
+//          M x = nu B x,   B = K + s M,   lambda = 1/nu - s,
+//      whose B is positive definite for s > 0 on a connected free body (K is
+//      positive definite on the null space of M unless a massless part is loose,
+//      and s M covers the rigid motions). Null mass directions give nu = 0
+//      (infinite lambda) and are discarded (nu <= kNullNu / s); rigid modes give
+//      nu = 1/s, the largest.
+//        dense   : Eigen::GeneralizedSelfAdjointEigenSolver(M, B) (Cholesky of B);
+//        spectra : Spectra::SymGEigsSolver in Cholesky mode (sparse LLT of B),
+//                  largest nu. Its Krylov operator L^-1 M L^-T has the spectrum of
+//                  the shift-invert operator (K + s M)^-1 M, so convergence is
+//                  that of shift-invert at sigma = -s, but the inner product is
+//                  the Euclidean one of the Cholesky-transformed problem instead
+//                  of the M inner product of SymGEigsShiftSolver. When M is
+//                  singular that inner product is only a semi-norm, blind to
+//                  null-mass components of the Lanczos vectors: on the ccx block
+//                  fixture shift-invert reported convergence while its Ritz vectors
+//                  had residuals |K x - lambda M x| / |K x| up to 0.15, eigenvalues
+//                  off by up to 3 % (4e-3 after the Rayleigh-Ritz step 4). nev
+//                  grows until the count and the frequency cut-off are covered.
+//      Choice of s: the computed nu have an absolute error ~ eps / s, so the
+//      relative error of lambda is ~ eps (lambda + s)^2 / (s lambda): smallest
+//      (4 eps) at lambda = s and growing only linearly with lambda / s or
+//      s / lambda. The lowest elastic eigenvalue is not known beforehand; FE
+//      models of engine parts have lambda_1 / lambda_max between ~1e-10 and
+//      ~1e-2, so s = kShiftRel * d with kShiftRel = 1e-6 and d = max_i K_ii / M_ii
+//      (a Rayleigh quotient, lambda_max >= d) sits in the middle of that range on
+//      a log scale: the wanted eigenvalues then carry relative errors below
+//      ~1e4 eps before the Rayleigh-Ritz step 4 (which refines them further).
+//   3. Rigid eigenvectors: the returned eigenvectors with the 6 largest rigid
+//      content |R^T M phi|^2 (R = rigid_basis(), M-orthonormal) are the rigid
+//      ones; no threshold on lambda is used, so a very slender body whose
+//      softest elastic modes are tiny compared with lambda_max keeps them. A free
+//      body has content ~1 on 6 eigenvectors; if the sixth largest is below 1/2,
+//      K does not have the rigid-body null space of a free body (supported model).
+//   4. The remaining (elastic) eigenvectors E are projected twice against R:
+//      E <- E - R (R^T M E). The small projected problem is solved again in the
+//      shifted form (E^T M E) y = nu (E^T K E + s E^T M E) y, Phi = E y
+//      M-normalised, lambda = phi^T K phi (Rayleigh-Ritz). An elastic eigenvalue
+//      below kMechanismRel * s (numerically zero or negative) means a mechanism,
+//      loose nodes or an indefinite K; a clearly negative rigid-mode eigenvalue
+//      (below -kNegativeRel * s) means K is not positive semi-definite.
 //   5. Truncation by count and cut-off frequency, modes = [R | elastic] or
 //      [elastic], damping c_k = 2 zeta omega_k for elastic modes.
 #include "solver/body_builder.h"
@@ -36,9 +58,9 @@
 #include <vector>
 
 #ifdef EVAS_HAVE_SPECTRA
+#include <Spectra/MatOp/SparseCholesky.h>
 #include <Spectra/MatOp/SparseSymMatProd.h>
-#include <Spectra/MatOp/SymShiftInvert.h>
-#include <Spectra/SymGEigsShiftSolver.h>
+#include <Spectra/SymGEigsSolver.h>
 #endif
 
 namespace evas {
@@ -46,10 +68,16 @@ namespace evas {
 namespace {
 
 constexpr double kTwoPi = 6.283185307179586476925286766559;
-/// Relative size below which an eigenvalue counts as a rigid-body (zero) eigenvalue.
-constexpr double kRigidRel = 1e-8;
-/// Relative size below which a non-rigid eigenvalue is numerically zero (a mechanism).
-constexpr double kMechanismRel = 1e-12;
+/// Shift s = kShiftRel * max_i K_ii / M_ii of the pencil M x = nu (K + s M) x (see step 2).
+constexpr double kShiftRel = 1e-6;
+/// Eigenvalues nu <= kNullNu / s of the shifted pencil belong to null mass
+/// directions (nu = 0, lambda = infinity) and are discarded. Their computed nu
+/// are round-off, ~ eps / s; the kept modes have lambda < 1e11 s.
+constexpr double kNullNu = 1e-11;
+/// An elastic eigenvalue below kMechanismRel * s is numerically zero (a mechanism).
+constexpr double kMechanismRel = 1e-6;
+/// A rigid eigenvalue below -kNegativeRel * s means K is not positive semi-definite.
+constexpr double kNegativeRel = 1e-4;
 /// Models with fewer DOF than this use the dense solver under solver = "auto"
 /// when a truncation is given (measured: dense 20 s vs Spectra 0.02 s at 2000 DOF);
 /// without a truncation all modes are wanted and only the dense solver gives them.
@@ -59,9 +87,8 @@ constexpr int kDenseLimit = 600;
 constexpr int kSpectraMargin = 10;
 
 struct EigenPairs {
-  Vec values;         ///< ascending
-  Mat vectors;        ///< 3N x m, M-normalised
-  double lambda_ref;  ///< scale of the spectrum used for the rigid threshold
+  Vec values;   ///< lambda, ascending
+  Mat vectors;  ///< 3N x m, M-normalised
 };
 
 [[noreturn]] void fail(const std::string& body, const std::string& what) {
@@ -134,45 +161,56 @@ double diagonal_ratio(const SpMat& K, const SpMat& M) {
   return r;
 }
 
-EigenPairs solve_dense(const std::string& name, const SpMat& K, const SpMat& M) {
-  const Mat Kd = Mat(K);
-  const Mat Md = Mat(M);
-  Eigen::GeneralizedSelfAdjointEigenSolver<Mat> es(Kd, Md,
-                                                   Eigen::ComputeEigenvectors | Eigen::Ax_lBx);
-  if (es.info() != Eigen::Success)
-    fail(name, "dense generalized eigen-solver failed (is the mass matrix positive definite?)");
+/// Eigenpairs of the shifted pencil (values nu, vectors B-normalised, any order)
+/// to ascending lambda = 1/nu - s with M-normalised vectors (x^T M x = nu x^T B x
+/// = nu), dropping the null-mass directions nu <= kNullNu / s.
+EigenPairs from_shifted(const Vec& nu, const Mat& X, double s) {
+  std::vector<int> idx;
+  for (int j = 0; j < static_cast<int>(nu.size()); ++j)
+    if (nu[j] > kNullNu / s) idx.push_back(j);
+  // ascending lambda = descending nu
+  std::sort(idx.begin(), idx.end(), [&](int a, int b) { return nu[a] > nu[b]; });
   EigenPairs ep;
-  ep.values = es.eigenvalues();
-  ep.vectors = es.eigenvectors();
-  ep.lambda_ref = ep.values.cwiseAbs().maxCoeff();
+  ep.values.resize(static_cast<long>(idx.size()));
+  ep.vectors.resize(X.rows(), static_cast<long>(idx.size()));
+  for (int j = 0; j < static_cast<int>(idx.size()); ++j) {
+    ep.values[j] = 1.0 / nu[idx[j]] - s;
+    ep.vectors.col(j) = X.col(idx[j]) / std::sqrt(nu[idx[j]]);
+  }
   return ep;
 }
 
+EigenPairs solve_dense(const std::string& name, const SpMat& K, const SpMat& M, double s) {
+  const Mat Md = Mat(M);
+  const Mat Bd = Mat(K) + s * Md;
+  Eigen::GeneralizedSelfAdjointEigenSolver<Mat> es(Md, Bd,
+                                                   Eigen::ComputeEigenvectors | Eigen::Ax_lBx);
+  if (es.info() != Eigen::Success)
+    fail(name,
+         "dense generalized eigen-solver failed: K + s M is not positive definite (K is "
+         "indefinite, or a part of the model without mass is loose)");
+  return from_shifted(es.eigenvalues(), es.eigenvectors(), s);
+}
+
 #ifdef EVAS_HAVE_SPECTRA
-EigenPairs solve_spectra_once(const std::string& name, const SpMat& K, const SpMat& M, int nev,
-                              double sigma) {
-  using OpType = Spectra::SymShiftInvert<double, Eigen::Sparse, Eigen::Sparse>;
-  using BOpType = Spectra::SparseSymMatProd<double>;
-  const int n = static_cast<int>(K.rows());
+EigenPairs solve_spectra_once(const std::string& name, const SpMat& M,
+                              Spectra::SparseCholesky<double>& chol, double s, int nev) {
+  using OpType = Spectra::SparseSymMatProd<double>;
+  using BOpType = Spectra::SparseCholesky<double>;
+  const int n = static_cast<int>(M.rows());
   const int ncv = std::min(n, std::max(2 * nev + 1, nev + 20));
-  OpType op(K, M);
-  BOpType bop(M);
+  OpType op(M);
   try {
-    Spectra::SymGEigsShiftSolver<OpType, BOpType, Spectra::GEigsMode::ShiftInvert> eig(op, bop, nev,
-                                                                                       ncv, sigma);
+    Spectra::SymGEigsSolver<OpType, BOpType, Spectra::GEigsMode::Cholesky> eig(op, chol, nev, ncv);
     eig.init();
-    eig.compute(Spectra::SortRule::LargestMagn, 2000, 1e-12, Spectra::SortRule::SmallestAlge);
+    eig.compute(Spectra::SortRule::LargestAlge, 2000, 1e-12, Spectra::SortRule::LargestAlge);
     if (eig.info() != Spectra::CompInfo::Successful) {
       std::ostringstream os;
-      os << "Spectra shift-invert eigen-solver did not converge (" << nev << " eigenpairs, ncv "
-         << ncv << ", shift " << sigma << ")";
+      os << "Spectra eigen-solver did not converge (" << nev << " eigenpairs, ncv " << ncv
+         << ", shift " << s << ")";
       fail(name, os.str());
     }
-    EigenPairs ep;
-    ep.values = eig.eigenvalues();
-    ep.vectors = eig.eigenvectors();
-    ep.lambda_ref = 0.0;
-    return ep;
+    return from_shifted(eig.eigenvalues(), eig.eigenvectors(), s);
   } catch (const std::invalid_argument& e) {
     fail(name, std::string("Spectra eigen-solver: ") + e.what());
   }
@@ -212,41 +250,34 @@ ModalBody build_modal_body(const std::string& name, const FeModel& fe, const Bui
   if (solver != "dense" && solver != "spectra")
     fail(name, "unknown eigen-solver '" + opt.solver + "' (use dense, spectra or auto)");
 
+  const double dratio = diagonal_ratio(fe.K, M);
+  if (!(dratio > 0.0)) fail(name, "stiffness K has no positive diagonal entry");
+  const double shift = kShiftRel * dratio;
+
   EigenPairs ep;
   if (solver == "dense") {
-    ep = solve_dense(name, fe.K, M);
+    ep = solve_dense(name, fe.K, M, shift);
   } else {
 #ifdef EVAS_HAVE_SPECTRA
     if (opt.num_elastic == 0 && opt.max_frequency == 0.0)
       fail(name, "the spectra eigen-solver needs num_elastic or max_frequency to be set");
-    const double dratio = diagonal_ratio(fe.K, M);
-    if (!(dratio > 0.0)) fail(name, "stiffness K has no positive diagonal entry");
-    // Shift: -(2 pi * 1 Hz)^2, kept between 1e-12 and 1e-6 of the spectral scale so
-    // that K - sigma M is numerically regular yet sigma stays well below the
-    // elastic spectrum in any unit system.
-    const double sigma = -std::clamp(kTwoPi * kTwoPi, 1e-12 * dratio, 1e-6 * dratio);
+    const SpMat B = SpMat(fe.K + shift * M);
+    Spectra::SparseCholesky<double> chol(B);
+    if (chol.info() != Spectra::CompInfo::Successful)
+      fail(name,
+           "sparse Cholesky of K + s M failed: K is indefinite, or a part of the model "
+           "without mass is loose");
     int nev = 6 + (opt.num_elastic > 0 ? opt.num_elastic : 20) + kSpectraMargin;
     for (;;) {
       if (nev > n / 2) {
         // The request covers a large part of the spectrum: dense is cheaper and exact.
-        ep = solve_dense(name, fe.K, M);
+        ep = solve_dense(name, fe.K, M, shift);
         break;
       }
-      ep = solve_spectra_once(name, fe.K, M, nev, sigma);
-      const std::vector<int> order = ascending(ep.values);
-      Vec v(ep.values.size());
-      Mat V(n, ep.vectors.cols());
-      for (int j = 0; j < static_cast<int>(order.size()); ++j) {
-        v[j] = ep.values[order[j]];
-        V.col(j) = ep.vectors.col(order[j]);
-      }
-      ep.values = v;
-      ep.vectors = V;
-      ep.lambda_ref = std::max(dratio, ep.values.cwiseAbs().maxCoeff());
-      const double top = ep.values[ep.values.size() - 1];
+      ep = solve_spectra_once(name, M, chol, shift, nev);
       const int found = static_cast<int>(ep.values.size());
       const bool count_ok = opt.num_elastic > 0 && found >= opt.num_elastic + 6 + kSpectraMargin;
-      const bool cut_ok = lambda_cut > 0.0 && top > lambda_cut;
+      const bool cut_ok = lambda_cut > 0.0 && found > 0 && ep.values[found - 1] > lambda_cut;
       if (count_ok || cut_ok) break;
       nev *= 2;
     }
@@ -255,46 +286,30 @@ ModalBody build_modal_body(const std::string& name, const FeModel& fe, const Bui
 #endif
   }
 
-  // --- rigid eigenvectors ------------------------------------------------------
+  // --- rigid eigenvectors: the 6 with the largest rigid content ------------------
   const Mat R = rigid_basis(fe.s, fe.Ms);
-  const double tol = kRigidRel * ep.lambda_ref;
   const int m_all = static_cast<int>(ep.values.size());
-  if (m_all > 0 && ep.values[0] < -tol) {
-    std::ostringstream os;
-    os << "stiffness K is not positive semi-definite (eigenvalue " << ep.values[0] << ")";
-    fail(name, os.str());
-  }
-  int n_small = 0;
-  while (n_small < m_all && std::abs(ep.values[n_small]) < tol) ++n_small;
+  if (m_all < 7) fail(name, "the eigen-solver returned fewer than 7 modes (too few mass DOF)");
+  const Vec content =
+      (R.transpose() * apply_mass(fe.Ms, ep.vectors)).colwise().squaredNorm().transpose();
+  std::vector<int> by_content(m_all);
+  for (int j = 0; j < m_all; ++j) by_content[j] = j;
+  std::partial_sort(by_content.begin(), by_content.begin() + 6, by_content.end(),
+                    [&](int a, int b) { return content[a] > content[b]; });
   std::vector<bool> is_rigid(m_all, false);
-  if (n_small <= 6) {
-    for (int j = 0; j < n_small; ++j) is_rigid[j] = true;
-  } else {
-    // More than 6 small eigenvalues: a very slender body whose softest elastic
-    // modes fall below the threshold, or a mechanism. The 6 eigenvectors with the
-    // largest rigid-body content |R^T M phi|^2 are the rigid ones.
-    const Mat c = R.transpose() * apply_mass(fe.Ms, ep.vectors.leftCols(n_small));
-    const Vec content = c.colwise().squaredNorm().transpose();
-    std::vector<int> idx(n_small);
-    for (int j = 0; j < n_small; ++j) idx[j] = j;
-    std::sort(idx.begin(), idx.end(), [&](int a, int b) { return content[a] > content[b]; });
-    for (int j = 0; j < 6; ++j) is_rigid[idx[j]] = true;
-  }
-  int n_mech = 0;
-  for (int j = 0; j < n_small; ++j)
-    if (!is_rigid[j] && std::abs(ep.values[j]) < kMechanismRel * ep.lambda_ref) ++n_mech;
-  if (n_mech > 0) {
-    std::ostringstream os;
-    os << "K has " << 6 + n_mech
-       << " zero eigenvalues, more than the 6 rigid-body modes: the model has a mechanism or "
-          "unconnected nodes";
-    fail(name, os.str());
+  for (int j = 0; j < 6; ++j) {
+    is_rigid[by_content[j]] = true;
+    if (ep.values[by_content[j]] < -kNegativeRel * shift) {
+      std::ostringstream os;
+      os << "stiffness K is not positive semi-definite (eigenvalue " << ep.values[by_content[j]]
+         << ")";
+      fail(name, os.str());
+    }
   }
   std::vector<int> elastic_cols;
   for (int j = 0; j < m_all; ++j)
     if (!is_rigid[j]) elastic_cols.push_back(j);
   const int m_el = static_cast<int>(elastic_cols.size());
-  if (m_el < 1) fail(name, "the eigen-solver returned no elastic modes");
 
   // --- project against the explicit rigid basis and re-solve ------------------
   Mat E(n, m_el);
@@ -306,7 +321,8 @@ ModalBody build_modal_body(const std::string& name, const FeModel& fe, const Bui
   Mat Mr = E.transpose() * ME;
   Kr = (0.5 * (Kr + Kr.transpose())).eval();
   Mr = (0.5 * (Mr + Mr.transpose())).eval();
-  Eigen::GeneralizedSelfAdjointEigenSolver<Mat> red(Kr, Mr);
+  // Shifted form as in step 2: Mr y = nu (Kr + s Mr) y, Kr + s Mr positive definite.
+  Eigen::GeneralizedSelfAdjointEigenSolver<Mat> red(Mr, Mat(Kr + shift * Mr));
   if (red.info() != Eigen::Success)
     fail(name, "projected elastic eigenproblem failed (elastic modes not independent)");
   Mat Phi = E * red.eigenvectors();
@@ -314,6 +330,7 @@ ModalBody build_modal_body(const std::string& name, const FeModel& fe, const Bui
   Phi -= R * (R.transpose() * apply_mass(fe.Ms, Phi));
   for (int j = 0; j < Phi.cols(); ++j) {
     const double nrm2 = Phi.col(j).dot(apply_mass(fe.Ms, Phi.col(j)).col(0));
+    if (!(nrm2 > 0.0)) fail(name, "an elastic mode has no mass (null mass direction)");
     Phi.col(j) /= std::sqrt(nrm2);
   }
   Vec lam(Phi.cols());
@@ -321,10 +338,23 @@ ModalBody build_modal_body(const std::string& name, const FeModel& fe, const Bui
     const Mat KPhi = fe.K * Phi;
     for (int j = 0; j < Phi.cols(); ++j) lam[j] = Phi.col(j).dot(KPhi.col(j));
   }
+  int n_mech = 0;
+  for (int j = 0; j < Phi.cols(); ++j)
+    if (lam[j] < kMechanismRel * shift) ++n_mech;
+  if (n_mech > 0) {
+    std::ostringstream os;
+    os << "K has " << 6 + n_mech
+       << " zero eigenvalues, more than the 6 rigid-body modes: the model has a mechanism or "
+          "unconnected nodes";
+    fail(name, os.str());
+  }
+  if (content[by_content[5]] < 0.5)
+    fail(name,
+         "K does not have the 6 rigid-body modes of a free body (is the FE model supported?)");
 
   // --- truncation ---------------------------------------------------------------
-  // Ascending eigenvalue; Spectra returned the lowest nev eigenpairs (shift below
-  // the spectrum), so the lowest num_elastic of them are the true lowest modes.
+  // Ascending eigenvalue; Spectra returned the largest nu = lowest lambda, so the
+  // lowest num_elastic of them are the true lowest modes.
   std::vector<int> keep;
   if (!(lam.minCoeff() > 0.0)) fail(name, "an elastic mode has a non-positive eigenvalue");
   for (int j : ascending(lam)) {

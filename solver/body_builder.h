@@ -1,11 +1,13 @@
 // Modal-body builder: from sparse stiffness and mass plus node coordinates to a
 // ModalBody with an explicit mass-orthonormal rigid basis (formulation.md s. 2).
 //
-// Lowest modes by dense Eigen (small models) or Spectra shift-invert (large,
-// sparse); the rigid modes the eigen-solver returns (arbitrary mixtures, |lambda|
-// ~ 0) are replaced by rigid_basis(), the elastic modes are re-orthogonalised
-// against it and each other in the mass inner product, then truncated by count
-// and/or frequency cut-off.
+// Lowest modes of the shifted pencil M x = nu (K + s M) x (lambda = 1/nu - s),
+// well posed also when the consistent mass is only semi-definite (coarse C10
+// meshes), by dense Eigen (small models) or Spectra with a sparse Cholesky of
+// K + s M (large); the six eigenvectors with the largest rigid-body content are
+// replaced by rigid_basis(), the elastic modes are re-orthogonalised against it
+// and each other in the mass inner product, then truncated by count and/or
+// frequency cut-off.
 #pragma once
 
 #include "solver/modal_body.h"

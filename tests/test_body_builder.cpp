@@ -2,9 +2,12 @@
 // Spectra, truncation and a free-free beam frequency check.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <iostream>
+#include <string>
+#include <vector>
 
 #include "solver/body_builder.h"
 
@@ -312,6 +315,147 @@ TEST(BodyBuilder, VerySlenderBeamKeepsItsSoftestModes) {
   for (int k = 6; k < 10; ++k) EXPECT_NEAR(b.eigenvalues[k], ev[k], 1e-8 * ev[k]);
   const Mat R = rigid_basis(fe.s, fe.Ms);
   EXPECT_LT((R.transpose() * M * b.modes.rightCols(4)).cwiseAbs().maxCoeff(), 1e-12);
+}
+
+namespace {
+
+/// Truss beam whose lumped scalar mass is made singular: for every third section
+/// the 2 x 2 block of nodes (4k, 4k+1) becomes the rank-1 block
+/// [m_a, sqrt(m_a m_b); sqrt(m_a m_b), m_b] (positive diagonal, null vector
+/// (sqrt(m_b), -sqrt(m_a))), as a 4-point C3D10 mass is on a coarse mesh.
+/// Both nodes stay stiffly connected, so K + s M is positive definite for s > 0.
+FeModel singular_mass_truss(int segments, int* null_count) {
+  TrussBeamSpec sp;
+  sp.segments = segments;
+  sp.length = 0.1 * segments;
+  sp.width = 0.08;
+  sp.origin = Vec3(0.3, 0.02, -0.01);
+  FeModel fe = make_truss_beam(sp);
+  const int N = static_cast<int>(fe.s.rows());
+  std::vector<Triplet> t;
+  for (int i = 0; i < N; ++i) t.emplace_back(i, i, fe.Ms.coeff(i, i));
+  int count = 0;
+  for (int k = 0; 4 * k + 1 < N; k += 3) {
+    const int a = 4 * k, b = 4 * k + 1;
+    const double mab = std::sqrt(fe.Ms.coeff(a, a) * fe.Ms.coeff(b, b));
+    t.emplace_back(a, b, mab);
+    t.emplace_back(b, a, mab);
+    ++count;
+  }
+  fe.Ms.setFromTriplets(t.begin(), t.end());
+  fe.Ms.makeCompressed();
+  *null_count = count;
+  return fe;
+}
+
+/// Reference eigenvalues by static condensation of the massless coordinates:
+/// with Ms = Q diag(mu) Q^T (mu = 0 on the null space Z, mu > 0 on U), the
+/// coordinates along Z carry no inertia and are eliminated with K,
+/// Kc = Kuu - Kuz Kzz^-1 Kzu, then Kc x = lambda Mu x with Mu positive definite.
+Vec condensed_eigenvalues(const FeModel& fe, int expected_null) {
+  const int N = static_cast<int>(fe.s.rows());
+  Eigen::SelfAdjointEigenSolver<Mat> ms{Mat(fe.Ms)};
+  const Vec& mu = ms.eigenvalues();
+  std::vector<int> u_idx, z_idx;
+  for (int i = 0; i < N; ++i) (mu[i] > 1e-12 * mu.maxCoeff() ? u_idx : z_idx).push_back(i);
+  EXPECT_EQ(static_cast<int>(z_idx.size()), expected_null);
+  const int nu = static_cast<int>(u_idx.size()), nz = static_cast<int>(z_idx.size());
+  // DOF 3i + a: Q3 = Q (x) I3, columns ordered [U | Z].
+  Mat Q3 = Mat::Zero(3 * N, 3 * N);
+  for (int j = 0; j < N; ++j) {
+    const int col = j < nu ? u_idx[j] : z_idx[j - nu];
+    for (int i = 0; i < N; ++i)
+      for (int a = 0; a < 3; ++a) Q3(3 * i + a, 3 * j + a) = ms.eigenvectors()(i, col);
+  }
+  const Mat Kq = Q3.transpose() * Mat(fe.K) * Q3;
+  const Mat Mq = Q3.transpose() * dense_mass(fe.Ms) * Q3;
+  const int ru = 3 * nu, rz = 3 * nz;
+  const Mat Kzz = Kq.bottomRightCorner(rz, rz);
+  Mat Kc = Kq.topLeftCorner(ru, ru) -
+           Kq.topRightCorner(ru, rz) * Kzz.llt().solve(Kq.bottomLeftCorner(rz, ru));
+  Kc = (0.5 * (Kc + Kc.transpose())).eval();
+  Mat Mu = Mq.topLeftCorner(ru, ru);
+  Mu = (0.5 * (Mu + Mu.transpose())).eval();
+  Eigen::GeneralizedSelfAdjointEigenSolver<Mat> es(Kc, Mu, Eigen::EigenvaluesOnly);
+  return es.eigenvalues();
+}
+
+}  // namespace
+
+TEST(BodyBuilder, SingularMassDenseAndSpectraMatchStaticCondensation) {
+  int nulls = 0;
+  const FeModel fe = singular_mass_truss(30, &nulls);
+  const int n = 3 * static_cast<int>(fe.s.rows());
+  ASSERT_GT(nulls, 5);
+  const Vec ref = condensed_eigenvalues(fe, nulls);
+  ASSERT_EQ(ref.size(), n - 3 * nulls);
+  const int nel = 12;
+  BuildOptions opt;
+  opt.num_elastic = nel;
+  const Mat M = dense_mass(fe.Ms);
+  const Mat R = rigid_basis(fe.s, fe.Ms);
+  std::vector<std::string> solvers = {"dense"};
+#ifdef EVAS_HAVE_SPECTRA
+  solvers.push_back("spectra");
+#endif
+  for (const std::string& solver : solvers) {
+    opt.solver = solver;
+    const ModalBody b = build_modal_body(solver, fe, opt);
+    ASSERT_EQ(b.num_modes(), 6 + nel) << solver;
+    double worst = 0.0;
+    for (int k = 6; k < 6 + nel; ++k) {
+      const double rel = std::abs(b.eigenvalues[k] / ref[k] - 1.0);
+      worst = std::max(worst, rel);
+      EXPECT_LT(rel, 1e-9) << solver << " mode " << k;
+      // residual of the pencil: K phi - lambda M phi, relative to K phi
+      const Vec phi = b.modes.col(k);
+      const Vec kphi = fe.K * phi;
+      EXPECT_LT((kphi - b.eigenvalues[k] * (M * phi)).norm(), 1e-7 * kphi.norm())
+          << solver << " mode " << k;
+    }
+    const Mat PMP = b.modes.transpose() * M * b.modes;
+    EXPECT_LT((PMP - Mat::Identity(6 + nel, 6 + nel)).cwiseAbs().maxCoeff(), 1e-10) << solver;
+    EXPECT_LT((R.transpose() * M * b.modes.rightCols(nel)).cwiseAbs().maxCoeff(), 1e-12) << solver;
+    std::cout << "[builder] singular Ms (" << 3 * nulls << " null mass directions of " << n
+              << " DOF), " << solver << ": max rel. eigenvalue error vs static condensation "
+              << worst << "\n";
+  }
+
+  // Two extra nodes without stiffness whose mass block [m m; m m] is singular: their
+  // relative motion has neither mass nor stiffness (K + s M singular), their common
+  // motion mass but no stiffness (a mechanism). Either must be reported.
+  FeModel loose = fe;
+  {
+    const int N = static_cast<int>(fe.s.rows());
+    loose.s.conservativeResize(N + 2, 3);
+    loose.s.row(N) = Eigen::RowVector3d(5.0, 5.0, 5.0);
+    loose.s.row(N + 1) = Eigen::RowVector3d(5.0, 5.1, 5.0);
+    loose.node_ids.push_back(N + 1);
+    loose.node_ids.push_back(N + 2);
+    loose.K.conservativeResize(3 * N + 6, 3 * N + 6);
+    std::vector<Triplet> t;
+    for (int c = 0; c < fe.Ms.outerSize(); ++c)
+      for (SpMat::InnerIterator it(fe.Ms, c); it; ++it)
+        t.emplace_back(static_cast<int>(it.row()), c, it.value());
+    for (int a = N; a < N + 2; ++a)
+      for (int b = N; b < N + 2; ++b) t.emplace_back(a, b, 0.01);
+    loose.Ms.resize(N + 2, N + 2);
+    loose.Ms.setFromTriplets(t.begin(), t.end());
+  }
+  for (const std::string& solver : solvers) {
+    opt.solver = solver;
+    try {
+      build_modal_body("b", loose, opt);
+      ADD_FAILURE() << solver << ": a loose massless combination was accepted";
+    } catch (const InputError& e) {
+      // dense: the pair's common motion (mass, no stiffness) is a mechanism; or the
+      // Cholesky of K + s M sees the massless, stiffness-free relative motion.
+      const std::string w = e.what();
+      EXPECT_TRUE(w.find("K + s M") != std::string::npos ||
+                  w.find("mechanism") != std::string::npos)
+          << w;
+    }
+  }
 }
 
 #ifdef EVAS_HAVE_SPECTRA
