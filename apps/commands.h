@@ -23,5 +23,6 @@ int cmd_export(const std::vector<std::string>& args);
 int cmd_body(const std::vector<std::string>& args);
 int cmd_elements(const std::vector<std::string>& args);
 int cmd_modal(const std::vector<std::string>& args);
+int cmd_spectrum(const std::vector<std::string>& args);
 
 }  // namespace evas::cli

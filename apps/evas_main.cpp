@@ -19,6 +19,7 @@ const char* kUsage =
     "  body truss OUT.h5   generate a modal-body file of a truss beam\n"
     "  elements            reference of every force element and its parameters (Markdown)\n"
     "  modal build|import  FE pipeline (gmsh, ccx) and CalculiX import to a modal body\n"
+    "  spectrum RESULTS.h5 order spectrum of a channel over whole engine cycles\n"
     "\n"
     "`evas <command> --help` describes the options of each command.\n";
 
@@ -43,6 +44,7 @@ int main(int argc, char** argv) {
     if (cmd == "body") return evas::cli::cmd_body(args);
     if (cmd == "elements") return evas::cli::cmd_elements(args);
     if (cmd == "modal") return evas::cli::cmd_modal(args);
+    if (cmd == "spectrum") return evas::cli::cmd_spectrum(args);
   } catch (const boost::program_options::error& e) {
     std::cerr << "evas " << cmd << ": " << e.what() << " (see `evas " << cmd << " --help`)\n";
     return 1;

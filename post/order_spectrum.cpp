@@ -1,0 +1,65 @@
+#include "post/order_spectrum.h"
+
+#include <cmath>
+#include <string>
+
+#include "solver/types.h"
+
+namespace evas {
+
+OrderSpectrum order_spectrum(const std::vector<double>& theta, const std::vector<double>& y,
+                             int cycles, double cycle_deg, double max_order) {
+  const std::size_t n = theta.size();
+  if (n != y.size()) throw InputError("order spectrum: angle and signal lengths differ");
+  if (n < 3) throw InputError("order spectrum: fewer than 3 samples");
+  const double d = theta[1] - theta[0];
+  if (!(d > 0.0)) throw InputError("order spectrum: crank angles must increase");
+  for (std::size_t i = 1; i < n; ++i)
+    if (std::abs(theta[i] - theta[i - 1] - d) > 1e-6 * d)
+      throw InputError("order spectrum: crank-angle grid is not uniform at sample " +
+                       std::to_string(i) + " (run the scene with output grid crank-angle)");
+  const double per_cycle = cycle_deg / d;
+  const long M = std::lround(per_cycle);
+  if (M < 2 || std::abs(per_cycle - M) > 1e-6 * per_cycle)
+    throw InputError("order spectrum: the step " + std::to_string(d) + " deg does not divide " +
+                     std::to_string(cycle_deg) + " deg");
+  const long available = static_cast<long>(n) / M;
+  if (available < 1)
+    throw InputError("order spectrum: the record covers less than one " +
+                     std::to_string(cycle_deg) + "-deg cycle");
+  const long C = cycles > 0 ? cycles : available;
+  if (C > available)
+    throw InputError("order spectrum: " + std::to_string(C) + " cycles asked, the record holds " +
+                     std::to_string(available));
+  const long N = C * M;
+  const std::size_t first = n - static_cast<std::size_t>(N);
+  for (std::size_t i = first; i < n; ++i)
+    if (!std::isfinite(y[i])) throw InputError("order spectrum: non-finite sample");
+
+  OrderSpectrum s;
+  s.cycles = static_cast<int>(C);
+  const double order_step = 360.0 / cycle_deg;  // orders per cycle harmonic
+  const long jmax_nyq = M / 2;
+  const long jmax =
+      max_order > 0.0 ? std::min(jmax_nyq, static_cast<long>(max_order / order_step)) : jmax_nyq;
+  const double theta0 = theta[first] * M_PI / 180.0;
+  for (long j = 0; j <= jmax; ++j) {
+    // DFT bin k = j C: j periods per cycle.
+    double re = 0.0, im = 0.0;
+    const double w = 2.0 * M_PI * static_cast<double>(j) / static_cast<double>(M);
+    for (long i = 0; i < N; ++i) {
+      re += y[first + i] * std::cos(w * i);
+      im -= y[first + i] * std::sin(w * i);
+    }
+    const bool edge = j == 0 || (M % 2 == 0 && j == M / 2);
+    const double scale = (edge ? 1.0 : 2.0) / static_cast<double>(N);
+    const double order = j * order_step;
+    s.order.push_back(order);
+    s.amplitude.push_back(scale * std::hypot(re, im));
+    // y ~ A cos(order (theta - theta0) + phi0) = A cos(order theta + phase)
+    s.phase.push_back(std::remainder(std::atan2(im, re) - order * theta0, 2.0 * M_PI));
+  }
+  return s;
+}
+
+}  // namespace evas

@@ -1,0 +1,30 @@
+// Order spectra of engine results (formulation.md s. 8).
+//
+// Engine results are read against crank angle and engine order. Given samples
+// on a uniform crank-angle grid, the spectrum is taken over a whole number of
+// cycles (720 deg for a four-stroke engine) at the end of the record, after the
+// transient: the discrete Fourier transform of C cycles of M samples each
+// resolves orders in steps of 360/cycle_deg (0.5 for 720 deg), and only those
+// integer harmonics of the cycle are reported, so no leakage enters them.
+#pragma once
+
+#include <vector>
+
+namespace evas {
+
+struct OrderSpectrum {
+  std::vector<double> order;      ///< engine order (harmonic of the crank rotation)
+  std::vector<double> amplitude;  ///< single-sided amplitude (mean value at order 0)
+  std::vector<double> phase;      ///< [rad] in (-pi, pi], of cos(order * theta + phase)
+  int cycles = 0;                 ///< cycles used
+};
+
+/// theta_deg: crank angles, ascending with a uniform step that divides cycle_deg;
+/// y: the signal at those angles. cycles = 0 uses as many whole cycles as the
+/// record holds (from its end). Orders up to max_order (0 = Nyquist).
+/// Throws InputError for a non-uniform grid, a step that does not divide the
+/// cycle, a record shorter than one cycle or non-finite samples.
+OrderSpectrum order_spectrum(const std::vector<double>& theta_deg, const std::vector<double>& y,
+                             int cycles = 0, double cycle_deg = 720.0, double max_order = 0.0);
+
+}  // namespace evas
