@@ -35,6 +35,14 @@ class Element {
   virtual void derivatives(double t, const MarkerMotion* motion, Mat& D) const;
   /// True if the loads depend on marker motion (false: explicit in time).
   virtual bool state_dependent() const { return true; }
+  /// True if the element reads the rotation (psi, w) of the marker in `slot` or
+  /// puts a moment on it: such a marker must carry a rotation (a node set that is
+  /// not collinear, or ground). Model::add_element rejects a mismatch, so that no
+  /// moment is dropped silently.
+  virtual bool needs_rotation(std::size_t slot) const {
+    (void)slot;
+    return false;
+  }
 
   /// Output channels and their values at the given motion.
   virtual std::vector<Channel> channels() const = 0;

@@ -31,6 +31,9 @@ namespace evas {
 
 class EngineMount : public Element {
  public:
+  bool needs_rotation(std::size_t) const override {
+    return (kr_.array() != 0.0).any() || (cr_.array() != 0.0).any();
+  }
   EngineMount(std::string name, std::vector<int> markers, std::array<ForceLaw, 3> laws,
               const Vec3& damping, const Vec3& preload, const Vec3& rot_stiffness,
               const Vec3& rot_damping, const Vec3& orientation = Vec3::Zero(),

@@ -72,6 +72,8 @@ class JournalBearing : public Element {
  public:
   JournalBearing(std::string name, std::vector<int> markers, const JournalBearingParams& p);
   std::string type() const override { return "journal-bearing"; }
+  /// Two axial stations read the journal's tilt and load both markers with a moment.
+  bool needs_rotation(std::size_t) const override { return p_.halves == 2; }
   void evaluate(double t, const MarkerMotion* m, MarkerLoad* loads) const override;
   void derivatives(double t, const MarkerMotion* m, Mat& D) const override;
   std::vector<Channel> channels() const override;

@@ -78,6 +78,8 @@ struct PistonConrodParams {
 
 class PistonConrod : public Element {
  public:
+  /// The liner marker takes the moment that moves the side force to the pin height.
+  bool needs_rotation(std::size_t slot) const override { return slot == 1; }
   /// `gas` may be null (no gas force). Throws InputError on inconsistent geometry.
   PistonConrod(std::string name, std::vector<int> markers, const PistonConrodParams& p,
                std::shared_ptr<const PressureTable> gas);

@@ -21,6 +21,9 @@ class SpringDamper : public Element {
   SpringDamper(std::string name, std::vector<int> markers, const Vec3& k, const Vec3& c,
                const Vec3& kr, const Vec3& cr, const Vec3& l0, const Vec3& preload);
   std::string type() const override { return "spring-damper"; }
+  bool needs_rotation(std::size_t) const override {
+    return (kr_.array() != 0.0).any() || (cr_.array() != 0.0).any();
+  }
   void evaluate(double t, const MarkerMotion* m, MarkerLoad* loads) const override;
   void derivatives(double t, const MarkerMotion* m, Mat& D) const override;
   std::vector<Channel> channels() const override;

@@ -67,9 +67,17 @@ int Model::add_marker(Marker m) {
 int Model::add_element(std::unique_ptr<Element> e) {
   for (const auto& x : elements_)
     if (x->name() == e->name()) throw InputError("element '" + e->name() + "' defined twice");
-  for (int m : e->markers())
+  const auto& ids = e->markers();
+  for (std::size_t slot = 0; slot < ids.size(); ++slot) {
+    const int m = ids[slot];
     if (m < 0 || m >= static_cast<int>(markers_.size()))
       throw InputError("element '" + e->name() + "': marker index out of range");
+    if (e->needs_rotation(slot) && !markers_[m].has_rotation)
+      throw InputError("element '" + e->name() + "': marker '" + markers_[m].name +
+                       "' carries no rotation (a single node or a collinear node set), but "
+                       "this element reads its rotation or loads it with a moment; attach it "
+                       "to a node set that spans a plane");
+  }
   elements_.push_back(std::move(e));
   return static_cast<int>(elements_.size()) - 1;
 }

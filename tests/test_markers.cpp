@@ -3,8 +3,10 @@
 // marker has no rotation, and loads spread back preserve virtual work.
 #include <gtest/gtest.h>
 
+#include "elements/spring_damper.h"
 #include "random_body.h"
 #include "solver/marker.h"
+#include "solver/model.h"
 
 using namespace evas;
 
@@ -70,4 +72,30 @@ TEST(Markers, SetMarkerAboutAGivenCentreFollowsRigidMotion) {
   EXPECT_LT((m.Bt * q - th).norm(), 1e-12 * th.norm());
   EXPECT_LT((m.Bu * q - (T + th.cross(centre - mp.com))).norm(), 1e-12 * T.norm());
   EXPECT_LT((m.c - centre).norm(), 1e-15);
+}
+
+TEST(Markers, MomentOnAMarkerWithoutRotationIsRejected) {
+  // A rotational spring on a single-node marker would have its moment dropped
+  // by the virtual-work map (Bt = 0): the model refuses it with a clear error.
+  auto b = std::make_shared<ModalBody>(test_bodies::random_body(10, 2, 6));
+  Model model;
+  model.add_body("b", b, Lof::fixed(Vec3::Zero(), Mat3::Identity()));
+  const int node = model.add_marker(make_node_marker("node", 0, *b, b->node_ids[2]));
+  const int set = model.add_marker(make_set_marker("set", 0, *b, b->node_sets.at("first4"), {}));
+  const int g = model.add_marker(make_ground_marker("g", Vec3::Zero(), Mat3::Identity()));
+  auto spring = [](const std::string& n, int m0, int m1, double kr) {
+    return std::make_unique<SpringDamper>(n, std::vector<int>{m0, m1}, Vec3(1, 1, 1), Vec3::Zero(),
+                                          Vec3(kr, kr, kr), Vec3::Zero(), Vec3::Zero(),
+                                          Vec3::Zero());
+  };
+  model.add_element(spring("translational", g, node, 0.0));  // no moment: fine
+  model.add_element(spring("rotational", g, set, 5.0));      // set with rotation: fine
+  try {
+    model.add_element(spring("bad", g, node, 5.0));
+    ADD_FAILURE() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("element 'bad': marker 'node' carries no rotation"),
+              std::string::npos)
+        << e.what();
+  }
 }

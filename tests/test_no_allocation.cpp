@@ -36,7 +36,7 @@ TEST(NoAllocation, ResidualAndJacobianAfterWarmUp) {
                  Lof::spin(Vec3::Zero(), Mat3::Identity(), Vec3::UnitX(), 0, {0.0}, {300.0}));
   model.add_body("b", b, Lof::fixed(Vec3::Zero(), Mat3::Identity()));
   const int ma = model.add_marker(make_set_marker("a", 0, *a, a->node_sets.at("first4"), {}));
-  const int mb = model.add_marker(make_node_marker("b", 1, *b, b->node_ids[3]));
+  const int mb = model.add_marker(make_set_marker("b", 1, *b, b->node_sets.at("first4"), {}));
   const int g = model.add_marker(make_ground_marker("g", Vec3::Zero(), Mat3::Identity()));
   model.add_element(std::make_unique<SpringDamper>(
       "k", std::vector<int>{ma, mb}, Vec3(1e6, 1e6, 1e6), Vec3(10, 10, 10), Vec3(1, 1, 1),
