@@ -76,27 +76,23 @@ class CvodeIntegrator final : public Integrator {
       throw RunError("cvode: output time " + format_number(tout) + " s is not after " +
                      format_number(t_) + " s");
     }
-    double tn = current_time();
     const double tstop = land ? tout : p_->next_stop(t_);
-    if (std::isfinite(tstop) && tstop > tn)
+    if (std::isfinite(tstop) && tstop > current_time())
       check(CVodeSetStopTime(mem_, tstop), "CVodeSetStopTime");
 
-    bool exact = false;  // y_ holds the solution at exactly tout
-    long steps = 0;
-    while (tn < tout) {
-      double tret = tn;
-      const int flag = CVode(mem_, tout, y_.get(), &tret, CV_ONE_STEP);
-      if (flag < 0) fail(CVodeGetReturnFlagName(flag));
-      double h = 0.0;
-      CVodeGetLastStep(mem_, &h);
-      note_step(total_, h);
-      tn = current_time();
-      if (flag == CV_TSTOP_RETURN && tret == tout) {
-        exact = true;
-        break;
-      }
-      if (++steps > s_.max_steps) fail("more than max_steps steps to reach the output");
-    }
+    const bool exact = sundials::step_to(
+        tout, s_.max_steps, CV_TSTOP_RETURN, total_,
+        [&](double& tret) { return CVode(mem_, tout, y_.get(), &tret, CV_ONE_STEP); },
+        [&] {
+          double h = 0.0;
+          CVodeGetLastStep(mem_, &h);
+          return h;
+        },
+        [&] { return current_time(); },
+        [&](int flag) {
+          fail(flag < 0 ? CVodeGetReturnFlagName(flag)
+                        : "more than max_steps steps to reach the output");
+        });
     if (!exact) {
       const int flag = CVodeGetDky(mem_, tout, 0, ytmp_.get());
       if (flag < 0) fail(CVodeGetReturnFlagName(flag));

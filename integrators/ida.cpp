@@ -71,26 +71,25 @@ class IdaIntegrator final : public Integrator {
       throw RunError("ida: output time " + format_number(tout) + " s is not after " +
                      format_number(t_) + " s");
     }
-    double tn = current_time();
     const double tstop = land ? tout : p_->next_stop(t_);
-    if (std::isfinite(tstop) && tstop > tn) check(IDASetStopTime(mem_, tstop), "IDASetStopTime");
+    if (std::isfinite(tstop) && tstop > current_time())
+      check(IDASetStopTime(mem_, tstop), "IDASetStopTime");
 
-    bool exact = false;  // y_ holds the solution at exactly tout
-    long steps = 0;
-    while (tn < tout) {
-      double tret = tn;
-      const int flag = IDASolve(mem_, tout, &tret, y_.get(), yd_.get(), IDA_ONE_STEP);
-      if (flag < 0) fail(IDAGetReturnFlagName(flag));
-      double h = 0.0;
-      IDAGetLastStep(mem_, &h);
-      note_step(total_, h);
-      tn = current_time();
-      if (flag == IDA_TSTOP_RETURN && tret == tout) {
-        exact = true;
-        break;
-      }
-      if (++steps > s_.max_steps) fail("more than max_steps steps to reach the output");
-    }
+    const bool exact = sundials::step_to(
+        tout, s_.max_steps, IDA_TSTOP_RETURN, total_,
+        [&](double& tret) {
+          return IDASolve(mem_, tout, &tret, y_.get(), yd_.get(), IDA_ONE_STEP);
+        },
+        [&] {
+          double h = 0.0;
+          IDAGetLastStep(mem_, &h);
+          return h;
+        },
+        [&] { return current_time(); },
+        [&](int flag) {
+          fail(flag < 0 ? IDAGetReturnFlagName(flag)
+                        : "more than max_steps steps to reach the output");
+        });
     if (!exact) {
       const int flag = IDAGetDky(mem_, tout, 0, ytmp_.get());
       if (flag < 0) fail(IDAGetReturnFlagName(flag));

@@ -197,5 +197,27 @@ inline void add_segment(IntegratorStats& total, const IntegratorStats& seg) {
   total.convergence_failures += seg.convergence_failures;
 }
 
+/// The stepping loop shared by the IDA and CVODE adapters: one internal step at
+/// a time towards tout (so that every step size is seen), stopping early when
+/// the solver returns at its stop time exactly at tout. `step(tret)` takes one
+/// step and returns the solver flag; `fail(flag)` reports a negative flag, or
+/// flag 0 for more than max_steps steps. Returns true when the solver's state
+/// is the solution at exactly tout (else the caller interpolates).
+template <class Step, class LastStep, class Time, class Fail>
+bool step_to(double tout, long max_steps, int tstop_return, IntegratorStats& total, Step step,
+             LastStep last_step, Time time, Fail fail) {
+  long steps = 0;
+  for (double tn = time(); tn < tout;) {
+    double tret = tn;
+    const int flag = step(tret);
+    if (flag < 0) fail(flag);
+    note_step(total, last_step());
+    tn = time();
+    if (flag == tstop_return && tret == tout) return true;
+    if (++steps > max_steps) fail(0);
+  }
+  return false;
+}
+
 }  // namespace sundials
 }  // namespace evas
