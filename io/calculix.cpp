@@ -771,34 +771,17 @@ ModalBody body_from_ccx_modes(const std::string& name, const FeModel& fe, const 
     keep.push_back(k);
   }
   if (keep.empty()) fail("no elastic modes in the .frd within the requested count / cut-off");
-  const int nr = opt.keep_rigid ? 6 : 0;
-  const int n = nr + static_cast<int>(keep.size());
-  ModalBody body;
-  body.name = name;
-  body.node_ids = fe.node_ids;
-  body.s = fe.s;
-  body.mass = fe.Ms;
-  body.node_sets = fe.node_sets;
-  body.modes.resize(3 * N, n);
-  body.eigenvalues = Vec::Zero(n);
-  body.damping = Vec::Zero(n);
-  body.kinds.assign(n, ModeKind::Elastic);
-  if (opt.keep_rigid) {
-    body.modes.leftCols(6) = R;
-    for (int k = 0; k < 6; ++k) body.kinds[k] = ModeKind::Rigid;
-  }
+  Mat elastic(3 * N, static_cast<Eigen::Index>(keep.size()));
+  Vec lam_keep(static_cast<Eigen::Index>(keep.size()));
   for (std::size_t j = 0; j < keep.size(); ++j) {
     Vec phi = X.col(keep[j]);
     for (int pass = 0; pass < 2; ++pass) phi -= R * (R.transpose() * apply_mass(fe.Ms, phi));
     const double nrm2 = phi.dot(apply_mass(fe.Ms, phi).col(0));
     if (!(nrm2 > 0.0)) fail("mode " + std::to_string(keep[j] + 1) + " is a rigid-body motion");
-    const int k = nr + static_cast<int>(j);
-    body.modes.col(k) = phi / std::sqrt(nrm2);
-    body.eigenvalues[k] = lam[keep[j]];
-    body.damping[k] = 2.0 * opt.damping_ratio * std::sqrt(lam[keep[j]]);
+    elastic.col(j) = phi / std::sqrt(nrm2);
+    lam_keep[j] = lam[keep[j]];
   }
-  body.validate();
-  return body;
+  return assemble_modal_body(name, fe, elastic, lam_keep, opt);
 }
 
 void write_ccx_mesh(const std::string& path, const InpMesh& mesh) {

@@ -372,28 +372,36 @@ ModalBody build_modal_body(const std::string& name, const FeModel& fe, const Bui
   }
 
   // --- assemble -----------------------------------------------------------------
+  Mat elastic(Phi.rows(), static_cast<Eigen::Index>(keep.size()));
+  Vec lam_keep(static_cast<Eigen::Index>(keep.size()));
+  for (std::size_t j = 0; j < keep.size(); ++j) {
+    elastic.col(j) = Phi.col(keep[j]);
+    lam_keep[j] = lam[keep[j]];
+  }
+  return assemble_modal_body(name, fe, elastic, lam_keep, opt);
+}
+
+ModalBody assemble_modal_body(const std::string& name, const FeModel& fe, const Mat& elastic,
+                              const Vec& eigenvalues, const BuildOptions& opt) {
   const int n_rigid = opt.keep_rigid ? 6 : 0;
-  const int n_modes = n_rigid + static_cast<int>(keep.size());
+  const int n_modes = n_rigid + static_cast<int>(elastic.cols());
   ModalBody body;
   body.name = name;
   body.node_ids = fe.node_ids;
   body.s = fe.s;
   body.mass = fe.Ms;
   body.node_sets = fe.node_sets;
-  body.modes.resize(n, n_modes);
+  body.modes.resize(elastic.rows(), n_modes);
   body.eigenvalues = Vec::Zero(n_modes);
   body.damping = Vec::Zero(n_modes);
   body.kinds.assign(n_modes, ModeKind::Elastic);
   if (opt.keep_rigid) {
-    body.modes.leftCols(6) = R;
+    body.modes.leftCols(6) = rigid_basis(fe.s, fe.Ms);
     for (int k = 0; k < 6; ++k) body.kinds[k] = ModeKind::Rigid;
   }
-  for (int j = 0; j < static_cast<int>(keep.size()); ++j) {
-    const int k = n_rigid + j;
-    body.modes.col(k) = Phi.col(keep[j]);
-    body.eigenvalues[k] = lam[keep[j]];
-    body.damping[k] = 2.0 * opt.damping_ratio * std::sqrt(lam[keep[j]]);
-  }
+  body.modes.rightCols(elastic.cols()) = elastic;
+  body.eigenvalues.tail(elastic.cols()) = eigenvalues;
+  body.damping.tail(elastic.cols()) = 2.0 * opt.damping_ratio * eigenvalues.cwiseSqrt();
   body.validate();
   return body;
 }

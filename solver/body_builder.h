@@ -26,4 +26,11 @@ struct BuildOptions {
 
 ModalBody build_modal_body(const std::string& name, const FeModel& fe, const BuildOptions& opt);
 
+/// A body from the FE model's nodes, mass and sets plus mass-orthonormal elastic
+/// shapes (3N x m, free of rigid motion) and their eigenvalues: the explicit rigid
+/// basis first when opt.keep_rigid, modal damping 2 zeta omega from
+/// opt.damping_ratio, validated. Used by the builder and by importers of modes.
+ModalBody assemble_modal_body(const std::string& name, const FeModel& fe, const Mat& elastic,
+                              const Vec& eigenvalues, const BuildOptions& opt);
+
 }  // namespace evas

@@ -17,13 +17,9 @@ namespace {
 
 constexpr double kTwoPi = 6.283185307179586476925286766559;
 
+// M = Ms (x) I3 as a dense matrix.
 Mat dense_mass(const SpMat& Ms) {
-  const int N = static_cast<int>(Ms.rows());
-  Mat M = Mat::Zero(3 * N, 3 * N);
-  for (int c = 0; c < Ms.outerSize(); ++c)
-    for (SpMat::InnerIterator it(Ms, c); it; ++it)
-      for (int a = 0; a < 3; ++a) M(3 * it.row() + a, 3 * c + a) = it.value();
-  return M;
+  return apply_mass(Ms, Mat::Identity(3 * Ms.rows(), 3 * Ms.rows()));
 }
 
 TrussBeamSpec small_truss() {

@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "fe_fixture.h"
 #include "io/calculix.h"
 #include "io/fe_pipeline.h"
 #include "solver/body_builder.h"
@@ -89,10 +90,6 @@ double timoshenko_free_free(double E, double nu, double rho, double R, double L)
   }
   Eigen::GeneralizedSelfAdjointEigenSolver<Mat> es(K, M, Eigen::EigenvaluesOnly);
   return hz(es.eigenvalues()[2]);  // two rigid modes first
-}
-
-bool have_programs() {
-  return !find_program({"gmsh"}).empty() && !find_program({"ccx", "ccx_2.20"}).empty();
 }
 
 }  // namespace
@@ -284,16 +281,8 @@ TEST(CalculixImport, MassPropertiesMatchTotalEffectiveMass) {
 
 // --- cylinder through gmsh and ccx ---------------------------------------------------
 
-class Cylinder : public ::testing::Test {
- protected:
-  static void SetUpTestSuite() {
-    if (!have_programs()) return;
-    try {
-      result_ = new PipelineResult(run_pipeline(params(), true));
-    } catch (const std::exception& e) {
-      error_ = e.what();  // reported as a failure by every test, never as a skip
-    }
-  }
+class Cylinder : public test_fe::PipelineSuite<Cylinder> {
+ public:
   static PipelineParams params() {
     PipelineParams p;
     p.name = "cylinder";
@@ -303,31 +292,11 @@ class Cylinder : public ::testing::Test {
     p.build.num_elastic = 8;
     p.ccx_eigen = true;
     p.ccx_modes = 16;
-    // One work directory per process: ctest runs the cases as parallel processes.
-    p.work_dir =
-        (fs::temp_directory_path() / ("evas_test_cylinder_" + std::to_string(::getpid()))).string();
-    p.output = p.work_dir + "/cylinder.h5";
     return p;
-  }
-  static void TearDownTestSuite() {
-    delete result_;
-    result_ = nullptr;
-  }
-  void SetUp() override {
-    if (!error_.empty()) FAIL() << "FE pipeline failed: " << error_;
-    if (!result_) {
-      // CI installs gmsh and ccx (make deps): there a missing program is a failure.
-      if (std::getenv("CI")) FAIL() << "gmsh or ccx not installed";
-      GTEST_SKIP() << "gmsh or ccx not installed";
-    }
   }
   static constexpr double kR = 20.0, kL = 400.0;  // mm
   static constexpr double kE = 210e9, kNu = 0.3, kRho = 7850.0;
-  static PipelineResult* result_;
-  static std::string error_;
 };
-PipelineResult* Cylinder::result_ = nullptr;
-std::string Cylinder::error_;
 
 TEST_F(Cylinder, EvasMatchesCcxEigenSolution) {
   const ModalBody& a = result_->body;

@@ -11,6 +11,7 @@
 #include <cstdlib>
 #include <filesystem>
 
+#include "fe_fixture.h"
 #include "io/fe_pipeline.h"
 #include "solver/body_builder.h"
 #include "solver/modal_body.h"
@@ -70,22 +71,10 @@ Estimate estimate(const Crank& c) {
   return e;
 }
 
-bool have_programs() {
-  return !find_program({"gmsh"}).empty() && !find_program({"ccx", "ccx_2.20"}).empty();
-}
-
 }  // namespace
 
-class Crankshaft : public ::testing::Test {
- protected:
-  static void SetUpTestSuite() {
-    if (!have_programs()) return;
-    try {
-      result_ = new PipelineResult(run_pipeline(params(), true));
-    } catch (const std::exception& e) {
-      error_ = e.what();  // reported as a failure by every test, never as a skip
-    }
-  }
+class Crankshaft : public test_fe::PipelineSuite<Crankshaft> {
+ public:
   static PipelineParams params() {
     PipelineParams p;
     p.name = "crankshaft";
@@ -99,31 +88,11 @@ class Crankshaft : public ::testing::Test {
     p.mesh_size = kMeshSize;
     p.build.num_elastic = 12;
     p.ccx_eigen = false;
-    // One work directory per process: ctest runs the cases as parallel processes.
-    p.work_dir =
-        (fs::temp_directory_path() / ("evas_test_crankshaft_" + std::to_string(::getpid())))
-            .string();
-    p.output = p.work_dir + "/crankshaft.h5";
     return p;
-  }
-  static void TearDownTestSuite() {
-    delete result_;
-    result_ = nullptr;
-  }
-  void SetUp() override {
-    if (!error_.empty()) FAIL() << "FE pipeline failed: " << error_;
-    if (!result_) {
-      if (std::getenv("CI")) FAIL() << "gmsh or ccx not installed";
-      GTEST_SKIP() << "gmsh or ccx not installed";
-    }
   }
   static constexpr double kMeshSize = 18.0;  // mm, coarse
   static constexpr double kRho = 7.85e-9;    // t/mm^3
-  static PipelineResult* result_;
-  static std::string error_;
 };
-PipelineResult* Crankshaft::result_ = nullptr;
-std::string Crankshaft::error_;
 
 TEST_F(Crankshaft, BuildsWithStageTimes) {
   const ModalBody& b = result_->body;
