@@ -24,6 +24,7 @@
 #include "elements/belt.h"
 #include "elements/engine_mount.h"
 #include "elements/thrust_bearing.h"
+#include "fd_check.h"
 #include "integrators/integrator.h"
 #include "random_body.h"
 #include "solver/system.h"
@@ -393,27 +394,9 @@ TEST(engine_mount, SystemJacobianWithThrustBearingAndBelt) {
   const int n = sys.size();
   Vec q = Vec::Random(n) * 1e-4, v = Vec::Random(n) * 0.05;
   const double t = 0.013;
-  SpMat K = sys.jacobian_pattern(), C = sys.jacobian_pattern();
-  sys.force_jacobian(t, q.data(), v.data(), K, C);
-  const Mat Kd = Mat(K), Cd = Mat(C);
-  Vec fp(n), fm(n);
-  double errK = 0, errC = 0;
-  for (int j = 0; j < n; ++j)
-    for (int which = 0; which < 2; ++which) {
-      Vec& x = which == 0 ? q : v;
-      const double x0 = x[j], h = which == 0 ? 1e-7 : 1e-4;
-      x[j] = x0 + h;
-      sys.force(t, q.data(), v.data(), fp.data());
-      x[j] = x0 - h;
-      sys.force(t, q.data(), v.data(), fm.data());
-      x[j] = x0;
-      const Vec col = (fp - fm) / (2 * h);
-      const Mat& J = which == 0 ? Kd : Cd;
-      const double e = (col - J.col(j)).cwiseAbs().maxCoeff() / (1.0 + J.cwiseAbs().maxCoeff());
-      (which == 0 ? errK : errC) = std::max(which == 0 ? errK : errC, e);
-    }
-  std::cout << "System Jacobian with mount + thrust bearing + belt vs FD: K " << errK << ", C "
-            << errC << "\n";
-  EXPECT_LT(errK, 1e-6);
-  EXPECT_LT(errC, 1e-6);
+  const auto err = test_fd::jacobian_fd_error(sys, t, q, v, 1e-7, 1e-4, true);
+  std::cout << "System Jacobian with mount + thrust bearing + belt vs FD: K " << err.K << ", C "
+            << err.C << "\n";
+  EXPECT_LT(err.K, 1e-6);
+  EXPECT_LT(err.C, 1e-6);
 }
