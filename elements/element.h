@@ -44,6 +44,24 @@ class Element {
     return false;
   }
 
+  /// Inertial loads (beyond the paper; e.g. the coupled piston's reciprocating
+  /// mass). An element of rank r > 0 has loads that are affine in the marker
+  /// accelerations (MarkerMotion::a, al) about the values it is evaluated at:
+  ///     loads(acc') = loads(acc) + P Q^T (acc' - acc),
+  /// P, Q: 6k x r, P's rows (F, M) and Q's rows (a, al) of marker i at 6i.
+  /// The System solves these accelerations together with the modal ones
+  /// (System::force). derivatives() is then taken at fixed accelerations.
+  virtual int inertia_rank() const { return 0; }
+  virtual void inertia(double t, const MarkerMotion* m, Mat& P, Mat& Q) const {
+    (void)t;
+    (void)m;
+    P.setZero();
+    Q.setZero();
+  }
+  /// True if P depends on the accelerations (piecewise-affine loads): the System
+  /// then re-linearises at the solved accelerations until they settle.
+  virtual bool inertia_piecewise() const { return false; }
+
   /// Output channels and their values at the given motion.
   virtual std::vector<Channel> channels() const = 0;
   virtual void channel_values(double t, const MarkerMotion* motion, double* out) const = 0;

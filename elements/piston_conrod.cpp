@@ -83,21 +83,44 @@ PistonConrod::PistonConrod(std::string name, std::vector<int> markers, const Pis
 }
 
 PistonConrod::State PistonConrod::state(double t) const {
-  State s;
   const double w = p_.speed;
-  s.theta = w * t + (p_.initial_angle_deg - p_.firing_phase_deg) * kRad;
+  const double theta = w * t + (p_.initial_angle_deg - p_.firing_phase_deg) * kRad;
+  return state_at(theta, w, 0.0);
+}
+
+PistonConrod::State PistonConrod::state(double t, const MarkerMotion* m) const {
+  if (!p_.coupled) return state(t);
+  double theta, thd, thdd;
+  crank_motion(m, theta, thd, thdd);
+  return state_at(theta, thd, thdd);
+}
+
+void PistonConrod::crank_motion(const MarkerMotion* m, double& theta, double& thd,
+                                double& thdd) const {
+  const Vec3 ea = m[1].R * ea_;
+  theta = ea.dot(m[0].psi - m[1].psi) + (p_.initial_angle_deg - p_.firing_phase_deg) * kRad;
+  thd = ea.dot(m[0].w - m[1].w);
+  thdd = ea.dot(m[0].al - m[1].al);
+}
+
+PistonConrod::State PistonConrod::state_at(double theta, double thd, double thdd) const {
+  State s;
+  s.theta = theta;
+  s.thd = thd;
+  s.thdd = thdd;
   double x, dx, ddx;
-  sc_.eval(s.theta, x, dx, ddx);
+  sc_.eval(theta, x, dx, ddx);
   s.x = x;
-  s.xd = dx * w;
-  // eq2: the paper's constant-speed two-term series (A2 ~ lambda), used consistently in
-  // the inertia, rod and side forces so that the element stays in equilibrium.
+  s.xd = dx * thd;
   const double lam = sc_.R / sc_.L;
-  s.xdd = p_.eq2_side_force ? -sc_.R * w * w * (std::cos(s.theta) + lam * std::cos(2 * s.theta))
-                            : ddx * w * w;
-  s.p = gas_ ? (*gas_)(s.theta) - p_.crankcase_pressure : 0.0;
+  // eq2 (prescribed only): the paper's constant-speed two-term series (A2 ~ lambda), used
+  // consistently in the inertia, rod and side forces so that the element stays in equilibrium.
+  s.xdd = p_.eq2_side_force ? -sc_.R * thd * thd * (std::cos(theta) + lam * std::cos(2 * theta))
+                            : ddx * thd * thd + dx * thdd;
+  const double dxdd = p_.eq2_side_force ? 0.0 : dx;  // d xdd / d thdd
+  s.p = gas_ ? (*gas_)(theta)-p_.crankcase_pressure : 0.0;
   s.Fc = s.p * area_;
-  s.sin_phi = lam * std::sin(s.theta);
+  s.sin_phi = lam * std::sin(theta);
   s.cos_phi = std::sqrt(1.0 - s.sin_phi * s.sin_phi);
   const double tphi = s.sin_phi / s.cos_phi;
   const double m = p_.piston_mass + p_.rec_mass;
@@ -106,28 +129,92 @@ PistonConrod::State PistonConrod::state(double t) const {
   const double sg = std::tanh(s.xd / p_.friction_velocity);
   const double B = (s.Fc + m * s.xdd + sg * p_.friction_force) * tphi;
   const double c = sg * p_.friction_coefficient * tphi;
-  s.N = B >= 0 ? B / (1 - c) : B / (1 + c);
+  const double den = B >= 0 ? 1 - c : 1 + c;
+  s.N = B / den;
   s.Ff = -sg * (p_.friction_force + p_.friction_coefficient * std::abs(s.N));
   s.Fr = (s.Fc + m * s.xdd - s.Ff) / s.cos_phi;
+  // derivatives with respect to thdd on the current branch (B >= 0 or B < 0)
+  s.dN = m * dxdd * tphi / den;
+  s.dFf = -sg * p_.friction_coefficient * (B >= 0 ? 1.0 : -1.0) * s.dN;
+  s.dFr = (m * dxdd - s.dFf) / s.cos_phi;
   const Vec3 u = s.cos_phi * ec_ - s.sin_phi * es_;
-  const Vec3 er = std::cos(s.theta) * ec_ + std::sin(s.theta) * es_;
-  s.F_pin_B = -s.Fr * u + p_.rot_mass * sc_.R * w * w * er;
+  const Vec3 er = std::cos(theta) * ec_ + std::sin(theta) * es_;
+  const Vec3 et = -std::sin(theta) * ec_ + std::cos(theta) * es_;
+  s.F_pin_B = -s.Fr * u + p_.rot_mass * sc_.R * (thd * thd * er - thdd * et);
   return s;
 }
 
+void PistonConrod::loads_B(const State& s, Vec3& F_pin, Vec3& F_liner, Vec3& M_liner,
+                           Vec3& F_head) const {
+  F_pin = s.F_pin_B;
+  F_liner = -s.N * es_ - s.Ff * ec_;
+  M_liner = (s.x - h_L_) * ec_.cross(-s.N * es_);
+  F_head = s.Fc * ec_;
+}
+
 void PistonConrod::evaluate(double t, const MarkerMotion* m, MarkerLoad* loads) const {
-  const State s = state(t);
+  const State s = state(t, m);
   const Mat3& R = m[1].R;  // block axes in G
-  loads[0].F = R * s.F_pin_B;
+  Vec3 Fp, Fl, Ml, Fh;
+  loads_B(s, Fp, Fl, Ml, Fh);
+  loads[0].F = R * Fp;
   loads[0].M.setZero();
-  loads[1].F = R * (-s.N * es_ - s.Ff * ec_);
-  loads[1].M = R * ((s.x - h_L_) * ec_.cross(-s.N * es_));
-  loads[2].F = R * (s.Fc * ec_);
+  loads[1].F = R * Fl;
+  loads[1].M = R * Ml;
+  loads[2].F = R * Fh;
   loads[2].M.setZero();
 }
 
-void PistonConrod::derivatives(double, const MarkerMotion*, Mat& D) const {
-  D.setZero();  // prescribed mode: loads are explicit in time
+void PistonConrod::inertia(double t, const MarkerMotion* m, Mat& P, Mat& Q) const {
+  P.setZero(18, 1);
+  Q.setZero(18, 1);
+  if (!p_.coupled) return;
+  const State s = state(t, m);
+  const Mat3& R = m[1].R;
+  const Vec3 ea = R * ea_;
+  Q.block<3, 1>(3, 0) = ea;   // al of the crankpin marker
+  Q.block<3, 1>(9, 0) = -ea;  // al of the liner marker
+  const Vec3 u = s.cos_phi * ec_ - s.sin_phi * es_;
+  const Vec3 et = -std::sin(s.theta) * ec_ + std::cos(s.theta) * es_;
+  P.block<3, 1>(0, 0) = R * (-s.dFr * u - p_.rot_mass * sc_.R * et);
+  P.block<3, 1>(6, 0) = R * (-s.dN * es_ - s.dFf * ec_);
+  P.block<3, 1>(9, 0) = R * ((s.x - h_L_) * ec_.cross(-s.dN * es_));
+}
+
+void PistonConrod::derivatives(double, const MarkerMotion* m, Mat& D) const {
+  D.setZero(18, 36);
+  if (!p_.coupled) return;  // prescribed mode: loads are explicit in time
+  // The loads depend on the motion through theta (psi of crankpin and liner) and thd
+  // (their w) only, at fixed thdd and block axes: chain rule with central differences
+  // in the two scalars (theta reduced to one 720 deg cycle, so the step is absolute).
+  double theta, thd, thdd;
+  crank_motion(m, theta, thd, thdd);
+  theta = std::fmod(theta, 4 * M_PI);
+  const Mat3& R = m[1].R;
+  const Vec3 ea = R * ea_;
+  auto loads_G = [&](double th, double w) {
+    Eigen::Matrix<double, 12, 1> L;
+    Vec3 Fp, Fl, Ml, Fh;
+    loads_B(state_at(th, w, thdd), Fp, Fl, Ml, Fh);
+    L << R * Fp, R * Fl, R * Ml, R * Fh;
+    return L;
+  };
+  const double h_th = 1e-6, h_w = 1e-6 * std::max(1.0, std::abs(thd));
+  const Eigen::Matrix<double, 12, 1> d_th =
+      (loads_G(theta + h_th, thd) - loads_G(theta - h_th, thd)) / (2 * h_th);
+  const Eigen::Matrix<double, 12, 1> d_w =
+      (loads_G(theta, thd + h_w) - loads_G(theta, thd - h_w)) / (2 * h_w);
+  // rows: pin F (0..2), liner F (6..8), liner M (9..11), head F (12..14)
+  const int rows[4] = {0, 6, 9, 12};
+  for (int b = 0; b < 4; ++b) {
+    const auto dth = d_th.segment<3>(3 * b);
+    const auto dw = d_w.segment<3>(3 * b);
+    // columns: marker j at 12 j: p 0..2, v 3..5, psi 6..8, w 9..11
+    D.block<3, 3>(rows[b], 6) += dth * ea.transpose();
+    D.block<3, 3>(rows[b], 12 + 6) -= dth * ea.transpose();
+    D.block<3, 3>(rows[b], 9) += dw * ea.transpose();
+    D.block<3, 3>(rows[b], 12 + 9) -= dw * ea.transpose();
+  }
 }
 
 std::vector<Channel> PistonConrod::channels() const {
@@ -137,8 +224,8 @@ std::vector<Channel> PistonConrod::channels() const {
           {"crankpin_force_y", "N"}, {"crankpin_force_z", "N"}};
 }
 
-void PistonConrod::channel_values(double t, const MarkerMotion*, double* out) const {
-  const State s = state(t);
+void PistonConrod::channel_values(double t, const MarkerMotion* m, double* out) const {
+  const State s = state(t, m);
   double a = std::fmod(s.theta / kRad, 720.0);
   if (a < 0) a += 720.0;
   out[0] = a;
@@ -173,7 +260,8 @@ ElementType piston_conrod_element_type() {
       "Gas force F_c = (p(theta) - crankcase_pressure) A_p on the head; side force on the liner "
       "(moved to the pin height by a moment); crankpin force along the rod plus m_2 R w^2. "
       "theta = speed t + initial_angle - firing_phase (0 = firing TDC; the table's cycle angle). "
-      "Mode prescribed: explicit in time (paper Step 3). See docs/elements-piston-motor.md.";
+      "Mode prescribed: explicit in time (paper Step 3); mode coupled: crank angle from the "
+      "markers, reciprocating inertia implicit. See docs/elements-piston-motor.md.";
   t.num_markers = 3;
   t.params = {
       scalar_param("crank_radius", "m", "crank radius R (half the stroke)", true, 0, 1e-6),
@@ -196,12 +284,18 @@ ElementType piston_conrod_element_type() {
           "an in-line four firing 1-3-4-2)",
           false, 0, 0.0, 720.0),
       text_param("mode",
-                 "prescribed: theta = speed t + initial_angle (explicit in time); coupled: not "
-                 "implemented yet",
+                 "prescribed: theta = speed t + initial_angle (explicit in time); coupled: theta "
+                 "= rotation of the crankpin marker relative to the liner marker about "
+                 "crank_axis + initial_angle, reciprocating inertia solved implicitly",
                  {"prescribed", "coupled"}, "prescribed"),
-      scalar_param("speed", "rad/s", "prescribed crank speed (3000 rpm = 314.159 rad/s)", true, 0,
-                   0.0),
-      scalar_param("initial_angle", "deg", "crank angle at t = 0", false, 0, -1e6, 1e6),
+      scalar_param("speed", "rad/s",
+                   "prescribed crank speed (3000 rpm = 314.159 rad/s); required in mode "
+                   "prescribed, not used in mode coupled",
+                   false, 0, 0.0),
+      scalar_param("initial_angle", "deg",
+                   "prescribed: crank angle at t = 0; coupled: crank angle of the reference "
+                   "(undeformed, unrotated) configuration",
+                   false, 0, -1e6, 1e6),
       pressure_file,
       scalar_param(
           "crankcase_pressure", "Pa",
@@ -226,12 +320,14 @@ ElementType piston_conrod_element_type() {
   };
   t.make = [](const std::string& name, const std::vector<int>& markers, const ParamValues& v) {
     const std::string where = "piston-conrod '" + name + "'";
-    if (v.text("mode") == "coupled")
-      throw InputError(where +
-                       ": mode 'coupled' is not implemented yet (it needs the crank's "
-                       "angular acceleration and an implicit reciprocating inertia); use "
-                       "mode 'prescribed'");
     PistonConrodParams p;
+    p.coupled = v.text("mode") == "coupled";
+    if (p.coupled && v.text("side_force") == "eq2")
+      throw InputError(where +
+                       ": side_force 'eq2' (the paper's constant-speed series) needs mode "
+                       "'prescribed'; mode 'coupled' uses the exact kinematics");
+    if (!p.coupled && !v.given("speed"))
+      throw InputError(where + ": parameter 'speed' is required in mode 'prescribed'");
     p.crank_radius = v.scalar("crank_radius");
     p.conrod_length = v.scalar("conrod_length");
     p.bore = v.scalar("bore");

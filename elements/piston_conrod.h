@@ -27,10 +27,20 @@
 //   crankpin  F = -F_r u + m_2 R w^2 e_r  (u = cos phi e_c - sin phi e_s: crankpin -> pin)
 //   liner     F = -N e_s - F_f e_c,  M = (x_p - h_L) e_c x (-N e_s)  (moves N to the pin)
 //   head      F = F_c e_c
-// Modes: `prescribed` (the paper's Step 3): theta_crank = w t + theta_0, loads
-// explicit in time, state_dependent() false, D = 0. `coupled` is rejected by
-// the factory (not implemented: it needs the crank's angular acceleration and
-// an implicit reciprocating inertia).
+// Modes:
+//  `prescribed` (the paper's Step 3): theta_crank = w t + theta_0, loads explicit
+//     in time, state_dependent() false, D = 0.
+//  `coupled` (beyond the paper): the crank angle is the crankpin marker's rotation
+//     relative to the liner marker about e_a,
+//       theta_crank = e_a.(psi_pin - psi_liner) + theta_0,  thd = e_a.(w_pin - w_liner),
+//       thdd = e_a.(al_pin - al_liner)   (e_a in G; psi includes the LOF spin),
+//     so torsion and speed fluctuation reach the piston; xd_p = x' thd,
+//     xdd_p = x' thdd + x'' thd^2, and the rotating mass adds m_2 R (thd^2 e_r - thdd e_t).
+//     The loads are affine in thdd (piecewise, through the friction's |N|): the
+//     element declares rank-1 inertia P Q^T with Q = (e_a on al_pin, -e_a on al_liner)
+//     and P = d(loads)/d(thdd), and the System solves the reciprocating inertia
+//     implicitly with the modal accelerations (docs/theory.md s.2.6). The block's
+//     own acceleration does not act on the piston (as in prescribed mode).
 #pragma once
 
 #include <memory>
@@ -74,19 +84,25 @@ struct PistonConrodParams {
   double friction_velocity = 0.05;  ///< smoothing speed v_s of the sign [m/s]
   double crankcase_pressure = 0.0;  ///< subtracted from the table [Pa]
   double liner_height = 0.0;        ///< h_L [m]; <= 0: L (middle of the pin's travel)
+  bool coupled = false;             ///< crank angle from the markers (see above)
 };
 
 class PistonConrod : public Element {
  public:
   /// The liner marker takes the moment that moves the side force to the pin height.
-  bool needs_rotation(std::size_t slot) const override { return slot == 1; }
+  bool needs_rotation(std::size_t slot) const override {
+    return slot == 1 || (slot == 0 && p_.coupled);
+  }
   /// `gas` may be null (no gas force). Throws InputError on inconsistent geometry.
   PistonConrod(std::string name, std::vector<int> markers, const PistonConrodParams& p,
                std::shared_ptr<const PressureTable> gas);
   std::string type() const override { return "piston-conrod"; }
   void evaluate(double t, const MarkerMotion* m, MarkerLoad* loads) const override;
   void derivatives(double t, const MarkerMotion* m, Mat& D) const override;
-  bool state_dependent() const override { return false; }
+  bool state_dependent() const override { return p_.coupled; }
+  int inertia_rank() const override { return p_.coupled ? 1 : 0; }
+  void inertia(double t, const MarkerMotion* m, Mat& P, Mat& Q) const override;
+  bool inertia_piecewise() const override { return p_.coupled && p_.friction_coefficient > 0; }
   std::vector<Channel> channels() const override;
   void channel_values(double t, const MarkerMotion* m, double* out) const override;
 
@@ -97,9 +113,16 @@ class PistonConrod : public Element {
     double p = 0.0;                                ///< gas pressure minus crankcase [Pa]
     double Fc = 0.0, Fr = 0.0, N = 0.0, Ff = 0.0;  ///< gas, rod, liner normal, friction [N]
     double sin_phi = 0.0, cos_phi = 1.0;
-    Vec3 F_pin_B = Vec3::Zero();  ///< crankpin load, block axes [N]
+    Vec3 F_pin_B = Vec3::Zero();            ///< crankpin load, block axes [N]
+    double thd = 0.0, thdd = 0.0;           ///< crank speed and acceleration used [rad/s, rad/s^2]
+    double dN = 0.0, dFf = 0.0, dFr = 0.0;  ///< d/d(thdd) of N, F_f, F_r (coupled mode)
   };
+  /// Prescribed mode: the state at time t.
   State state(double t) const;
+  /// Either mode: the state at the given marker motion (prescribed: motion ignored).
+  State state(double t, const MarkerMotion* m) const;
+  /// Exact kinematics at crank angle theta (cylinder), speed and acceleration.
+  State state_at(double theta, double thd, double thdd) const;
   const PistonConrodParams& params() const { return p_; }
 
  private:
@@ -108,6 +131,10 @@ class PistonConrod : public Element {
   SliderCrank sc_;
   Vec3 ec_, ea_, es_;  // block axes
   double area_, h_L_;
+  /// Loads in block axes (pin F, liner F, liner M, head F) from a state.
+  void loads_B(const State& s, Vec3& F_pin, Vec3& F_liner, Vec3& M_liner, Vec3& F_head) const;
+  /// Coupled mode: cylinder crank angle, speed, acceleration from the markers.
+  void crank_motion(const MarkerMotion* m, double& theta, double& thd, double& thdd) const;
 };
 
 /// Declaration for the registry ("piston-conrod").

@@ -150,6 +150,7 @@ void complete_params(const ElementType& type, ParamValues& values, const std::st
   for (const auto& p : type.params) {
     if (values.has(p.key)) continue;
     if (p.required) throw InputError(where + ": missing required parameter '" + p.key + "'");
+    values.defaulted.insert(p.key);
     if (p.kind == ParamSpec::Kind::Text)
       values.texts[p.key] = p.default_text;
     else

@@ -6,6 +6,7 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -36,6 +37,9 @@ struct ParamValues {
   const std::vector<double>& list(const std::string& key) const { return numbers.at(key); }
   const std::string& text(const std::string& key) const { return texts.at(key); }
   bool has(const std::string& key) const { return numbers.count(key) || texts.count(key); }
+  /// True if the value was given (not filled in by complete_params from the default).
+  bool given(const std::string& key) const { return has(key) && !defaulted.count(key); }
+  std::set<std::string> defaulted;  ///< keys filled from their defaults
 };
 
 struct ElementType {

@@ -89,7 +89,7 @@ OutputSet::OutputSet(const OutputSpec& spec, System& system, double t_start, dou
 
 void OutputSet::values(double t, const double* q, const double* v, double* out) {
   Model& model = sys_.model();
-  sys_.update_markers(t, q, v);
+  sys_.observe(t, q, v);  // full accelerations: inertial elements report the solved ones
   if (crank_body_ >= 0) out[0] = model.bodies()[crank_body_].lof.spin_angle(t) * kDeg;
   for (const Source& src : sources_) {
     double* o = out + src.first;

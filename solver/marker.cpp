@@ -88,6 +88,8 @@ void marker_motion(const Marker& m, const LofState& L, const double* q, const do
     out.psi.setZero();
     out.w.setZero();
     out.R = m.R_LM;
+    out.a.setZero();
+    out.al.setZero();
     return;
   }
   const Eigen::Index n = m.Bu.cols();
@@ -95,10 +97,15 @@ void marker_motion(const Marker& m, const LofState& L, const double* q, const do
   const Vec3 r_L = m.c + m.Bu * qm;
   const Vec3 r_G = L.R_GL * r_L;
   out.p = L.p_GL + r_G;
-  out.v = L.v_GL + L.w_GL_G.cross(r_G) + L.R_GL * (m.Bu * vm);
+  const Vec3 u_G = L.R_GL * (m.Bu * vm);
+  const Vec3 t_G = L.R_GL * (m.Bt * vm);
+  out.v = L.v_GL + L.w_GL_G.cross(r_G) + u_G;
   out.psi = L.psi_G + L.R_GL * (m.Bt * qm);
-  out.w = L.w_GL_G + L.R_GL * (m.Bt * vm);
+  out.w = L.w_GL_G + t_G;
   out.R = L.R_GL * m.R_LM;
+  out.a = L.a_GL + L.al_GL_G.cross(r_G) + L.w_GL_G.cross(L.w_GL_G.cross(r_G)) +
+          2.0 * L.w_GL_G.cross(u_G);
+  out.al = L.al_GL_G + L.w_GL_G.cross(t_G);
 }
 
 }  // namespace evas

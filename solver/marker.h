@@ -26,6 +26,11 @@ struct MarkerMotion {
                               ///< rotation [rad]
   Vec3 w = Vec3::Zero();      ///< angular velocity [rad/s]
   Mat3 R = Mat3::Identity();  ///< marker axes in G (columns), reference axes carried by the LOF
+  /// Acceleration and angular acceleration [m/s^2, rad/s^2]. marker_motion() gives
+  /// their part at zero modal acceleration (LOF and velocity terms); System::observe()
+  /// and the inertial-element path of System::force() add the modal part.
+  Vec3 a = Vec3::Zero();
+  Vec3 al = Vec3::Zero();
 };
 
 /// Load on a marker in G components.
@@ -56,7 +61,10 @@ Marker make_set_marker(const std::string& name, int body, const ModalBody& b,
 /// Marker fixed to the ground at p with axes R.
 Marker make_ground_marker(const std::string& name, const Vec3& p_G, const Mat3& R_GM);
 
-/// Marker motion from the body's LOF state and modal coordinates (q, v).
+/// Marker motion from the body's LOF state and modal coordinates (q, v); the
+/// accelerations a, al are those at qdd = 0:
+///   a  = a_GL + al_GL x r + w x (w x r) + 2 w x (R Bu v),   al = al_GL + w x (R Bt v)
+/// (r = R (c + Bu q)); the modal part R Bu qdd, R Bt qdd is added by the caller.
 void marker_motion(const Marker& m, const LofState& L, const double* q, const double* v,
                    MarkerMotion& out);
 

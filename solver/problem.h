@@ -1,6 +1,7 @@
 // The one interface between a model and the integrators.
 //
-// Second-order form (unit modal mass; formulation.md section 6):
+// Second-order form (unit modal mass; formulation.md section 6; a System with
+// inertial elements returns f with its element mass already eliminated):
 //     qdd + f(t, q, v) = 0,   v = qd,   q, v in R^n
 // with Jacobians K = df/dq and C = df/dv on one fixed sparsity pattern.
 // Integrators that need the first-order forms use FirstOrderForm

@@ -50,7 +50,38 @@ System::System(Model& model) : model_(model) {
         const int bi = markers[mi].body, bj = markers[mj].body;
         if (bi >= 0 && bj >= 0) pair[bi * nb + bj] = 1;
       }
+    if (const int r = el.inertia_rank(); r > 0) {
+      inertial_.push_back(static_cast<int>(e));
+      piecewise_ = piecewise_ || el.inertia_piecewise();
+      ework_[e].P = Mat::Zero(6 * k, r);
+      ework_[e].Q = Mat::Zero(6 * k, r);
+      ework_[e].col = rank_;
+      rank_ += r;
+    }
   }
+  if (rank_ > 0) {
+    // M^-1 K = K + U Z^-1 W^T K fills rows of the inertial bodies in the columns of
+    // their neighbours (the bodies their rows of K reach).
+    std::vector<char> inert(static_cast<std::size_t>(nb), 0),
+        reach(static_cast<std::size_t>(nb), 0);
+    for (int e : inertial_)
+      for (int mi : model_.elements()[e]->markers())
+        if (markers[mi].body >= 0) inert[markers[mi].body] = 1;
+    for (int bi = 0; bi < nb; ++bi)
+      for (int bj = 0; bj < nb; ++bj)
+        if (inert[bi] && pair[bi * nb + bj]) reach[bj] = 1;
+    for (int bi = 0; bi < nb; ++bi)
+      for (int bj = 0; bj < nb; ++bj)
+        if (inert[bi] && reach[bj]) pair[bi * nb + bj] = 1;
+    U_ = Mat::Zero(n, rank_);
+    W_ = Mat::Zero(n, rank_);
+    Z_ = Mat::Zero(rank_, rank_);
+    WtA_ = Mat::Zero(rank_, n);
+    f0_ = Vec::Zero(n);
+    y_ = Vec::Zero(rank_);
+    lu_ = Eigen::PartialPivLU<Mat>(rank_);
+  }
+  scratch_f_ = Vec::Zero(n);
   std::vector<Triplet> trip;
   for (int bi = 0; bi < nb; ++bi)
     for (int bj = 0; bj < nb; ++bj) {
@@ -115,15 +146,20 @@ void System::update_lof(double t) {
 }
 
 void System::add_rotation_correction(const Body& B, const Vec3& w_L, const Vec3& al_L, Mat& KW) {
-  for (int k = 3; k < 6; ++k)
-    if (B.rigid[k] < 0) return;  // no explicit rotation basis: nothing linearised to correct
+  bool any = false;
+  for (int k = 3; k < 6; ++k) any = any || B.rigid[k] >= 0;
+  if (!any) return;  // no explicit rotation basis: nothing linearised to correct
   // theta = T q_R with T = E diag(1/sqrt(J_k)) (solver/modal_body.cpp rigid_basis).
+  // A body with only some rotation modes (e.g. a disk that only turns about its
+  // axis) gets the sub-block of the present ones: the others are held fixed.
   Mat3 T;
   for (int k = 0; k < 3; ++k)
     T.col(k) = B.mp.principal_axes.col(k) / std::sqrt(B.mp.principal_moments[k]);
   const Mat3 Kq = T.transpose() * rigid_rotation_correction(B.mp.inertia, w_L, al_L) * T;
   for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) KW(B.rigid[3 + i], B.rigid[3 + j]) += Kq(i, j);
+    for (int j = 0; j < 3; ++j)
+      if (B.rigid[3 + i] >= 0 && B.rigid[3 + j] >= 0)
+        KW(B.rigid[3 + i], B.rigid[3 + j]) += Kq(i, j);
 }
 
 void System::update_markers(double t, const double* q, const double* v) {
@@ -140,6 +176,22 @@ void System::update_markers(double t, const double* q, const double* v) {
 
 void System::force(double t, const double* q, const double* v, double* f) {
   ++counters.f_evals;
+  force_impl(t, q, v, f);
+}
+
+void System::apply_load(int id, const Vec3& F, const Vec3& M, double* f) const {
+  const Marker& m = model_.markers()[id];
+  if (m.on_ground()) return;
+  const Body& B = model_.bodies()[m.body];
+  const Mat3& R = lof_[m.body].R_GL;
+  Eigen::Map<Vec> fb(f + B.offset, B.n());
+  const Vec3 F_L = R.transpose() * F;
+  const Vec3 M_L = R.transpose() * M;
+  fb.noalias() -= m.Bu.transpose() * F_L;
+  fb.noalias() -= m.Bt.transpose() * M_L;
+}
+
+void System::force_impl(double t, const double* q, const double* v, double* f) {
   update_markers(t, q, v);
   const auto& bodies = model_.bodies();
   for (std::size_t b = 0; b < bodies.size(); ++b) {
@@ -151,24 +203,124 @@ void System::force(double t, const double* q, const double* v, double* f) {
     fb.noalias() += W.KW * qb;
     fb.noalias() += W.G * vb;
   }
-  const auto& markers = model_.markers();
   for (std::size_t e = 0; e < ework_.size(); ++e) {
     const Element& el = *model_.elements()[e];
+    if (el.inertia_rank() > 0) continue;
     ElementWork& w = ework_[e];
     const auto& ids = el.markers();
     for (std::size_t i = 0; i < ids.size(); ++i) w.motion[i] = motion_[ids[i]];
     el.evaluate(t, w.motion.data(), w.loads.data());
+    for (std::size_t i = 0; i < ids.size(); ++i) apply_load(ids[i], w.loads[i].F, w.loads[i].M, f);
+  }
+  if (rank_ > 0) solve_inertia(t, f);
+}
+
+void System::solve_inertia(double t, double* f) {
+  const auto& markers = model_.markers();
+  const auto& bodies = model_.bodies();
+  const int n = size();
+  Eigen::Map<Vec> F(f, n);
+  f0_ = F;
+  for (int e : inertial_) {
+    ElementWork& w = ework_[e];
+    const auto& ids = model_.elements()[e]->markers();
     for (std::size_t i = 0; i < ids.size(); ++i) {
-      const Marker& m = markers[ids[i]];
-      if (m.on_ground()) continue;
-      const Body& B = bodies[m.body];
-      const Mat3& R = lof_[m.body].R_GL;
-      Eigen::Map<Vec> fb(f + B.offset, B.n());
-      const Vec3 F_L = R.transpose() * w.loads[i].F;
-      const Vec3 M_L = R.transpose() * w.loads[i].M;
-      fb.noalias() -= m.Bu.transpose() * F_L;
-      fb.noalias() -= m.Bt.transpose() * M_L;
+      w.motion[i] = motion_[ids[i]];  // linearise first at the accelerations of qdd = 0
+      if (!markers[ids[i]].on_ground()) marker_maps(ids[i]);
     }
+  }
+  constexpr int kMaxPasses = 4;
+  for (int pass = 0; pass < kMaxPasses; ++pass) {
+    F = f0_;
+    U_.setZero();
+    W_.setZero();
+    for (int e : inertial_) {
+      const Element& el = *model_.elements()[e];
+      ElementWork& w = ework_[e];
+      const auto& ids = el.markers();
+      const int r = el.inertia_rank();
+      el.evaluate(t, w.motion.data(), w.loads.data());
+      el.inertia(t, w.motion.data(), w.P, w.Q);
+      // loads at the accelerations of qdd = 0 by the affine model about w.motion
+      Vec dacc(6 * ids.size());
+      for (std::size_t i = 0; i < ids.size(); ++i)
+        dacc.segment<6>(6 * i) << w.motion[i].a - motion_[ids[i]].a,
+            w.motion[i].al - motion_[ids[i]].al;
+      const Vec corr = w.P * (w.Q.transpose() * dacc);
+      for (std::size_t i = 0; i < ids.size(); ++i) {
+        apply_load(ids[i], w.loads[i].F - corr.segment<3>(6 * i),
+                   w.loads[i].M - corr.segment<3>(6 * i + 3), f);
+        const Marker& m = markers[ids[i]];
+        if (m.on_ground()) continue;
+        const Body& B = bodies[m.body];
+        U_.block(B.offset, w.col, B.n(), r).noalias() +=
+            Lm_[ids[i]].transpose() * w.P.middleRows<6>(6 * i);
+        W_.block(B.offset, w.col, B.n(), r).noalias() +=
+            Lm_[ids[i]].transpose() * w.Q.middleRows<6>(6 * i);
+      }
+    }
+    // M^-1 f_0 = f_0 + U (I - W^T U)^-1 W^T f_0
+    Z_.noalias() = -W_.transpose() * U_;
+    Z_.diagonal().array() += 1.0;
+    lu_.compute(Z_);
+    if (!(lu_.rcond() > 1e-14)) {
+      std::string names;
+      for (int e : inertial_) names += " '" + model_.elements()[e]->name() + "'";
+      throw RunError("the mass matrix with the inertial elements" + names + " is singular (rcond " +
+                     std::to_string(lu_.rcond()) + ") at t = " + std::to_string(t) + " s");
+    }
+    y_.noalias() = W_.transpose() * F;
+    y_ = lu_.solve(y_);
+    F.noalias() += U_ * y_;
+    // the solved accelerations become each element's linearisation point
+    double change = 0.0;
+    for (int e : inertial_) {
+      const Element& el = *model_.elements()[e];
+      ElementWork& w = ework_[e];
+      const auto& ids = el.markers();
+      for (std::size_t i = 0; i < ids.size(); ++i) {
+        const Marker& m = markers[ids[i]];
+        Vec6 acc;
+        acc << motion_[ids[i]].a, motion_[ids[i]].al;
+        if (!m.on_ground()) {
+          const Body& B = bodies[m.body];
+          acc.noalias() -= Lm_[ids[i]] * F.segment(B.offset, B.n());  // qdd = -F
+        }
+        Vec6 old;
+        old << w.motion[i].a, w.motion[i].al;
+        const auto dq = (w.Q.middleRows<6>(6 * i).transpose() * (acc - old)).eval();
+        const auto aq = (w.Q.middleRows<6>(6 * i).transpose() * acc).eval();
+        change = std::max(change, dq.cwiseAbs().maxCoeff() / (1.0 + aq.cwiseAbs().maxCoeff()));
+        w.motion[i].a = acc.head<3>();
+        w.motion[i].al = acc.tail<3>();
+      }
+    }
+    if (!piecewise_ || change <= 1e-12) break;
+  }
+}
+
+void System::apply_inverse_mass(SpMat& A) {
+  // A <- A + U Z^-1 (W^T A) on A's pattern (which holds every entry this fills)
+  WtA_.noalias() = W_.transpose() * A;
+  WtA_ = lu_.solve(WtA_);
+  double* val = A.valuePtr();
+  const int* outer = A.outerIndexPtr();
+  const int* inner = A.innerIndexPtr();
+  for (int c = 0; c < A.cols(); ++c)
+    for (int k = outer[c]; k < outer[c + 1]; ++k) val[k] += U_.row(inner[k]).dot(WtA_.col(c));
+}
+
+void System::observe(double t, const double* q, const double* v) {
+  force_impl(t, q, v, scratch_f_.data());  // qdd = -f; leaves the LOF and motion_ current
+  const auto& markers = model_.markers();
+  const auto& bodies = model_.bodies();
+  for (std::size_t m = 0; m < markers.size(); ++m) {
+    if (markers[m].on_ground()) continue;
+    marker_maps(static_cast<int>(m));
+    const Body& B = bodies[markers[m].body];
+    const auto fb = scratch_f_.segment(B.offset, B.n());
+    motion_[m].a.noalias() -= Lm_[m].topRows<3>() * fb;
+    motion_[m].al.noalias() -= Lm_[m].bottomRows<3>() * fb;
   }
 }
 
@@ -200,6 +352,8 @@ void System::add_block(double* values, int bi, int bj, const Eigen::Ref<const Ma
 
 void System::force_jacobian(double t, const double* q, const double* v, SpMat& K, SpMat& C) {
   ++counters.jac_evals;
+  // inertial elements: solve the accelerations first (their D is taken there)
+  if (rank_ > 0) force_impl(t, q, v, scratch_f_.data());
   body_operator(t, K, C);
   update_markers(t, q, v);
   const auto& markers = model_.markers();
@@ -210,7 +364,8 @@ void System::force_jacobian(double t, const double* q, const double* v, SpMat& K
     const Element& el = *model_.elements()[e];
     ElementWork& w = ework_[e];
     const auto& ids = el.markers();
-    for (std::size_t i = 0; i < ids.size(); ++i) w.motion[i] = motion_[ids[i]];
+    if (el.inertia_rank() == 0)  // inertial ones keep the motion solve_inertia left
+      for (std::size_t i = 0; i < ids.size(); ++i) w.motion[i] = motion_[ids[i]];
     el.derivatives(t, w.motion.data(), w.D);
     for (std::size_t i = 0; i < ids.size(); ++i) {
       const int bi = markers[ids[i]].body;
@@ -231,6 +386,10 @@ void System::force_jacobian(double t, const double* q, const double* v, SpMat& K
         add_block(C.valuePtr(), bi, bj, Blk);
       }
     }
+  }
+  if (rank_ > 0) {
+    apply_inverse_mass(K);
+    apply_inverse_mass(C);
   }
 }
 

@@ -6,6 +6,16 @@
 // with a_L = R_LG (a_GL - g). Jacobian blocks: (Lambda + KW, C + G) dense on the
 // body's diagonal block, plus Lm^T D Pq / Lm^T D Pv for every pair of markers
 // an element touches (Lm = [R Bu; R Bt], the marker map in G).
+//
+// Inertial elements (Element::inertia_rank() > 0) make the equation
+//     M qdd + f_0(t, q, v) = 0,   M = I - U W^T,
+// U = sum Lm^T P, W = sum Lm^T Q (n x r, r = total rank, e.g. 1 per coupled
+// piston), f_0 = f with the element loads at the accelerations of qdd = 0.
+// force() returns the eliminated f = M^-1 f_0 (Woodbury: one r x r solve), so
+// that qdd + f = 0 still holds and no integrator needs to know; force_jacobian()
+// returns M^-1 K, M^-1 C (K, C at the solved accelerations, without the
+// derivative of the LOF's acceleration terms). The pattern gets the blocks the
+// product fills: inertial bodies x their neighbours. See docs/theory.md s.2.6.
 #pragma once
 
 #include <limits>
@@ -30,8 +40,12 @@ class System : public Problem {
   bool at_stop(double t, double* q, double* v) override;
   std::string describe_state(double t, const double* q, const double* v) const override;
 
-  /// Marker motions and element loads at (t, q, v) (for outputs and tests).
+  /// Marker motions at (t, q, v), accelerations at qdd = 0 (MarkerMotion::a).
   void update_markers(double t, const double* q, const double* v);
+  /// Marker motions with the full accelerations (qdd = -f solved): for outputs.
+  void observe(double t, const double* q, const double* v);
+  /// Total rank of the inertial elements (0: M = I).
+  int inertia_rank() const { return rank_; }
   const MarkerMotion& motion(int marker) const { return motion_[marker]; }
   const LofState& lof_state(int body) const { return lof_[body]; }
   Model& model() { return model_; }
@@ -41,6 +55,8 @@ class System : public Problem {
     std::vector<MarkerMotion> motion;
     std::vector<MarkerLoad> loads;
     Mat D;
+    Mat P, Q;     // inertial elements: 6k x r
+    int col = 0;  // first column of this element in U, W
   };
   struct BodyWork {
     Vec f0;
@@ -49,6 +65,13 @@ class System : public Problem {
     bool built = false;
   };
   void update_lof(double t);
+  void force_impl(double t, const double* q, const double* v, double* f);
+  /// Subtracts the generalised loads Lm^T (F, M) of marker `id` from f.
+  void apply_load(int id, const Vec3& F, const Vec3& M, double* f) const;
+  /// Inertial elements: f_0 -> M^-1 f_0; leaves their ElementWork::motion at the
+  /// solved accelerations and U_, W_, lu_ for apply_inverse_mass().
+  void solve_inertia(double t, double* f);
+  void apply_inverse_mass(SpMat& A);
   static void add_rotation_correction(const Body& B, const Vec3& w_L, const Vec3& al_L, Mat& KW);
   void marker_maps(int marker);
   /// Adds the dense block B (rows of body bi, columns of body bj) into values.
@@ -67,6 +90,13 @@ class System : public Problem {
   // column offset(bj) + c of the pattern (-1 if the block is absent).
   std::vector<std::vector<int>> block_start_;
   double t_lof_ = std::numeric_limits<double>::quiet_NaN();
+  // inertial elements
+  std::vector<int> inertial_;  // element indices
+  bool piecewise_ = false;
+  int rank_ = 0;
+  Mat U_, W_, Z_, WtA_;
+  Vec f0_, y_, scratch_f_;
+  Eigen::PartialPivLU<Mat> lu_;
 };
 
 }  // namespace evas

@@ -370,13 +370,32 @@ TEST(PistonConrod, DeclarationAndFactory) {
   e->channel_values(10 * kRad / kOmega, mm, out.data());
   EXPECT_NEAR(out[4], out[3] * M_PI / 4 * 0.106 * 0.106, 1e-6);
   EXPECT_GT(out[3], 13.5e6);
-  // Coupled mode is refused, honestly.
+  // Coupled mode is accepted and declares rank-1 inertia; eq2 (constant-speed series) is
+  // refused there, and prescribed mode without a speed is refused.
   v.texts["mode"] = "coupled";
+  auto c = t.make("cyl1", {0, 1, 2}, v);
+  EXPECT_TRUE(c->state_dependent());
+  EXPECT_EQ(c->inertia_rank(), 1);
+  v.texts["side_force"] = "eq2";
   try {
     t.make("cyl1", {0, 1, 2}, v);
-    ADD_FAILURE() << "coupled accepted";
+    ADD_FAILURE() << "eq2 accepted in coupled mode";
   } catch (const InputError& err) {
-    EXPECT_NE(std::string(err.what()).find("not implemented"), std::string::npos);
+    EXPECT_NE(std::string(err.what()).find("eq2"), std::string::npos) << err.what();
+  }
+  v.texts["side_force"] = "exact";
+  v.texts["mode"] = "prescribed";
+  {
+    ParamValues nv = v;
+    nv.numbers.erase("speed");
+    nv.defaulted.clear();
+    complete_params(t, nv, "test");
+    try {
+      t.make("cyl1", {0, 1, 2}, nv);
+      ADD_FAILURE() << "prescribed mode without speed accepted";
+    } catch (const InputError& err) {
+      EXPECT_NE(std::string(err.what()).find("'speed'"), std::string::npos) << err.what();
+    }
   }
   v.texts["mode"] = "prescribed";
   v.texts["pressure_file"] = "/nonexistent/p.txt";
