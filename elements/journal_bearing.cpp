@@ -230,6 +230,18 @@ void JournalBearing::evaluate(double t, const MarkerMotion* m, MarkerLoad* loads
   const Mat3& R0 = m[0].R;
   const Vec3 a = R0.col(2);
   const Eigen::Matrix<double, 3, 2> P = R0.leftCols<2>();
+  // The film model needs the journal to spin about the bearing axis (marker 0's z).
+  // A relative spin more than 30 deg off that axis means wrongly oriented markers.
+  const Vec3 w_rel = m[1].w - m[0].w;
+  const double w_n = w_rel.norm();
+  if (w_n > 1.0 && a.cross(w_rel).norm() > 0.5 * w_n) {
+    throw RunError(
+        "journal bearing '" + name() + "': the journal spins about an axis " +
+        std::to_string(std::asin(std::min(1.0, a.cross(w_rel).norm() / w_n)) * 180 / M_PI) +
+        " deg off the bearing axis (the z axis of the bearing marker) at t = " + std::to_string(t) +
+        " s; give the bearing marker a rotation that turns its z axis onto the "
+        "crank axis");
+  }
   Vec3 F = Vec3::Zero(), M = Vec3::Zero();
   for (const auto& st : stations_) {
     V2 e, ed;

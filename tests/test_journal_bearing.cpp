@@ -688,3 +688,28 @@ TEST(JournalBearing, Channels) {
   EXPECT_NEAR(ch[7], pmax, 1e-6 * pmax);
   EXPECT_GE(ch[7], pmax);
 }
+
+// A journal spinning about an axis far from the bearing axis (wrongly oriented
+// bearing marker) is an error naming the bearing, not a silently wrong film.
+TEST(JournalBearing, MisorientedSpinIsAnError) {
+  const JournalBearingParams p = base_params(false);
+  const JournalBearing jb = make_bearing(p);
+  MarkerMotion m[2];
+  m[1].p = Vec3(0.2 * p.clearance, 0.1 * p.clearance, 0.0);
+  MarkerLoad l[2];
+  for (double deg : {0.0, 20.0, 40.0, 90.0}) {
+    const double a = deg * M_PI / 180;
+    m[1].w = 300.0 * Vec3(std::sin(a), 0.0, std::cos(a));  // bearing axis = z
+    if (deg < 30) {
+      EXPECT_NO_THROW(jb.evaluate(0.01, m, l)) << deg;
+    } else {
+      try {
+        jb.evaluate(0.01, m, l);
+        ADD_FAILURE() << "spin " << deg << " deg off the axis accepted";
+      } catch (const RunError& e) {
+        EXPECT_NE(std::string(e.what()).find(jb.name()), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("off the bearing axis"), std::string::npos);
+      }
+    }
+  }
+}

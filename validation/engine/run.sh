@@ -1,0 +1,106 @@
+#!/bin/sh
+# The paper's validation: Case 1 (soft mounts) against Case 2 (rigid ground),
+# main-bearing loads over crank angle and their order spectra (docs/validation.md).
+#   usage: validation/engine/run.sh BUILD_DIR OUT_DIR [END_TIME]
+# END_TIME (s) shortens the run (CI uses a short one; the default is the scene's 0.24 s:
+# six cycles, the spectra use the last two).
+set -eu
+if [ $# -lt 2 ]; then
+  echo "usage: $0 BUILD_DIR OUT_DIR [END_TIME]" >&2
+  exit 1
+fi
+here=$(pwd)
+case $1 in /*) build=$1 ;; *) build=$here/$1 ;; esac
+case $2 in /*) out=$2 ;; *) out=$here/$2 ;; esac
+end=${3:-}
+dir=$(cd "$(dirname "$0")" && pwd)
+evas=$build/evas
+mkdir -p "$out"
+
+# Case 2: the same scene with stiff mounts (1e9 N/m: the block on rigid ground).
+# Scenes are written next to engine.yaml so that its relative paths still hold.
+case1=$dir/.case1.yaml
+case2=$dir/.case2.yaml
+trap 'rm -f "$case1" "$case2"' EXIT
+sed -e "s/^name: engine-case1/name: engine-case1/" "$dir/engine.yaml" > "$case1"
+awk '/# MOUNTS BEGIN/ {print; skip = 1
+       for (i = 1; i <= 4; i++)
+         printf "  - {name: mount%d, type: engine-mount, markers: [g%d, m%d], k_x: [1e9], k_y: [1e9],\n     k_z: [1e9], damping: [1e4, 1e4, 1e4]}\n", i, i, i
+       next}
+     /# MOUNTS END/ {skip = 0}
+     !skip {print}' "$dir/engine.yaml" | sed -e "s/^name: engine-case1/name: engine-case2/" > "$case2"
+if [ -n "$end" ]; then
+  for f in "$case1" "$case2"; do
+    sed -i -e "s/^time: {start: 0, end: [0-9.e-]*}/time: {start: 0, end: $end}/" "$f"
+  done
+fi
+
+for c in 1 2; do
+  echo "== case $c"
+  eval scene=\$case$c
+  /usr/bin/time -f "case $c: %e s wall, %M kB peak" "$evas" run "$scene" --out "$out/case$c" --csv
+  for b in 1 2 3 4 5; do
+    for ch in fx fy; do
+      "$evas" spectrum "$out/case$c/results.h5" --channel main$b.$ch --max-order 12 --cycles 2 \
+        --csv "$out/case$c/spectrum_main$b.$ch.csv" > /dev/null
+    done
+  done
+done
+
+# Order table: amplitude [kN] of each main bearing's load, Case 1 / Case 2.
+orders="0.5 1 1.5 2 3 4 6"
+{
+  printf "| channel |"
+  for o in $orders; do printf " order %s |" "$o"; done
+  printf "\n|---|"
+  for o in $orders; do printf "%s" "---|"; done
+  printf "\n"
+  for b in 1 2 3 4 5; do
+    for ch in fx fy; do
+      printf "| main%s.%s |" "$b" "$ch"
+      for o in $orders; do
+        a1=$(awk -F, -v o="$o" 'NR > 1 && $1 == o {printf "%.1f", $2 / 1000}' "$out/case1/spectrum_main$b.$ch.csv")
+        a2=$(awk -F, -v o="$o" 'NR > 1 && $1 == o {printf "%.1f", $2 / 1000}' "$out/case2/spectrum_main$b.$ch.csv")
+        printf " %s / %s |" "$a1" "$a2"
+      done
+      printf "\n"
+    done
+  done
+} > "$out/orders.md"
+echo "order table (kN, Case 1 / Case 2): $out/orders.md"
+
+if ! command -v gnuplot >/dev/null 2>&1; then
+  echo "validation: gnuplot not found, no plots; results in $out" >&2
+  exit 0
+fi
+if gnuplot -e "set terminal" 2>&1 | grep -q pngcairo; then
+  term="pngcairo size 1100,900 font 'sans,10'"
+else
+  term="png size 1100,900"
+fi
+gnuplot <<GP
+set terminal $term
+set output "$out/main_bearing_load.png"
+set datafile separator ","
+set grid
+set key below horizontal
+set multiplot layout 2,1 title "Main bearing 3 load, in-line four at 3000 rpm full load: soft mounts (Case 1) vs rigid ground (Case 2)"
+set xlabel "crank angle [deg] (last 720 deg)"
+set ylabel "F (bearing x = -z_G, vertical) [kN]"
+n1 = system("wc -l < $out/case1/results.csv") - 1
+n2 = system("wc -l < $out/case2/results.csv") - 1
+stats "$out/case1/results.csv" every ::(n1-720)::(n1-720) using 2 nooutput
+a1 = STATS_min
+stats "$out/case2/results.csv" every ::(n2-720)::(n2-720) using 2 nooutput
+a2 = STATS_min
+plot "$out/case1/results.csv" every ::(n1-720) using (column(2)-a1):(column("main3.fx[N]")/1000) with lines lw 1.5 title "Case 1 soft mounts", \
+     "$out/case2/results.csv" every ::(n2-720) using (column(2)-a2):(column("main3.fx[N]")/1000) with lines lw 1.5 dt 2 title "Case 2 rigid ground"
+set xlabel "order (multiples of crank speed)"
+set ylabel "amplitude [kN]"
+set style fill solid 0.6
+set boxwidth 0.2
+plot "$out/case1/spectrum_main3.fx.csv" skip 1 using (\$1-0.1):(\$2/1000) with boxes title "Case 1", \
+     "$out/case2/spectrum_main3.fx.csv" skip 1 using (\$1+0.1):(\$2/1000) with boxes title "Case 2"
+unset multiplot
+GP
+echo "validation results: $out/case1, $out/case2, $out/main_bearing_load.png"
