@@ -34,6 +34,7 @@ class PipelineSuite : public ::testing::Test {
                     ("evas_test_" + p.name + "_" + std::to_string(::getpid())))
                        .string();
       p.output = p.work_dir + "/" + p.name + ".h5";
+      work_dir_ = p.work_dir;
       result_ = new PipelineResult(run_pipeline(p, true));
     } catch (const std::exception& e) {
       error_ = e.what();
@@ -42,6 +43,8 @@ class PipelineSuite : public ::testing::Test {
   static void TearDownTestSuite() {
     delete result_;
     result_ = nullptr;
+    std::error_code ec;  // meshes, decks and matrices: hundreds of MB per run
+    if (!work_dir_.empty()) std::filesystem::remove_all(work_dir_, ec);
   }
   void SetUp() override {
     if (!error_.empty()) FAIL() << "FE pipeline failed: " << error_;
@@ -52,6 +55,7 @@ class PipelineSuite : public ::testing::Test {
   }
   static inline PipelineResult* result_ = nullptr;
   static inline std::string error_;
+  static inline std::string work_dir_;
 };
 
 }  // namespace evas::test_fe
