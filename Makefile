@@ -6,7 +6,7 @@ DEBS = cmake g++ make libsundials-dev libsuitesparse-dev libeigen3-dev libspectr
        libboost-program-options-dev libgtest-dev libyaml-cpp-dev libhdf5-dev gnuplot-nox \
        gmsh calculix-ccx
 
-.PHONY: deps build demo test bench work-precision docs format clean
+.PHONY: deps build demo test bench work-precision docs format clean validate
 
 deps:
 	@missing=""; for p in $(DEBS); do dpkg -s $$p >/dev/null 2>&1 || missing="$$missing $$p"; done; \
@@ -24,6 +24,13 @@ demo: build
 	./scripts/demo.sh $(BUILD) $(DEMO_OUT)
 	./$(BUILD)/validation/evas_work_precision scenes/demo.yaml $(DEMO_OUT) 0.05 > /dev/null
 	@echo "work-precision diagram of the demo scene: $(DEMO_OUT)/work_precision.png"
+	./validation/engine/run.sh $(BUILD) $(DEMO_OUT)/validation
+
+# The paper's validation: Case 1 (soft mounts) vs Case 2 (rigid ground), main-bearing
+# loads and their order spectra (docs/validation.md).
+VALIDATION_OUT ?= validation-out
+validate: build
+	./validation/engine/run.sh $(BUILD) $(VALIDATION_OUT)
 
 test: build
 	cd $(BUILD) && ctest --output-on-failure -j$(JOBS)
@@ -43,8 +50,15 @@ docs: build
 	  ./$(BUILD)/evas elements | sed '1{/^# /d;}' | sed '1{/^$$/d;}'; \
 	  echo '<!-- END GENERATED -->'; } > docs/elements.md.new && mv docs/elements.md.new docs/elements.md
 
+# Regenerate the validation engine's modal bodies kept in validation/bodies/
+# (gmsh -> ccx -> evas, reduced to the node sets; docs/engine-bodies.md).
+BODIES ?= crankshaft block
+.PHONY: bodies
+bodies: build
+	for b in $(BODIES); do ./$(BUILD)/evas modal build validation/bodies/$$b.yaml || exit 1; done
+
 format:
 	clang-format -i $$(git ls-files '*.cpp' '*.h')
 
 clean:
-	rm -rf $(BUILD) $(DEMO_OUT)
+	rm -rf $(BUILD) $(DEMO_OUT) $(VALIDATION_OUT)

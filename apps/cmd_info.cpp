@@ -1,12 +1,17 @@
 // evas info BODY.h5: inventory and sanity checks of a modal-body file.
 #include <boost/program_options.hpp>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
+#include <set>
 
 #include "apps/commands.h"
 #include "io/body_file.h"
 #include "solver/invariants.h"
+#include "solver/model.h"
+#include "solver/reduce_body.h"
 
 namespace evas::cli {
 
@@ -22,11 +27,14 @@ int cmd_info(const std::vector<std::string>& args) {
   po::options_description opts(
       "usage: evas info BODY.h5\n\n"
       "Prints the mode inventory (frequencies), mass properties and invariant checks of a\n"
-      "modal-body file:\n"
+      "modal-body file, and whether it is reduced (only the nodes of its node sets kept):\n"
       "  ||sum_a M_aa - I||     mass normalisation of the modes (should be ~1e-12)\n"
       "  max ||M_ab - M_ba^T||  symmetry of the modal invariants (should be ~0)\n"
       "  elastic max |S|        translational participation of elastic modes (~0)\n"
-      "  elastic max |R^T M phi| rigid-body participation of elastic modes (~0)\n\n"
+      "  elastic max |R^T M phi| rigid-body participation of elastic modes (~0)\n"
+      "Invariants and mass properties are the stored ones (of the full body) when the\n"
+      "file has them; for a full body they are then also checked against the nodes.\n"
+      "The load time is that of read_body_file plus Model::add_body.\n\n"
       "options");
   opts.add_options()("help,h", "show this help");
   po::variables_map vm;
@@ -36,7 +44,20 @@ int cmd_info(const std::vector<std::string>& args) {
     return 1;
   }
   const std::string path = vm["body"].as<std::string>();
-  const ModalBody b = read_body_file(path);
+  // Load time as a simulation sees it: read the file, add the body to a model
+  // (invariants, mass properties, rigid modes: stored or computed).
+  using Clock = std::chrono::steady_clock;
+  const auto t0 = Clock::now();
+  auto shared = std::make_shared<const ModalBody>(read_body_file(path));
+  const auto t1 = Clock::now();
+  {
+    Model model;
+    model.add_body("body", shared, Lof::fixed(Vec3::Zero(), Mat3::Identity()));
+  }
+  const auto t2 = Clock::now();
+  const double t_read = std::chrono::duration<double>(t1 - t0).count();
+  const double t_add = std::chrono::duration<double>(t2 - t1).count();
+  const ModalBody& b = *shared;
   const int N = b.num_nodes(), n = b.num_modes();
   int rigid = 0;
   for (ModeKind k : b.kinds) rigid += k == ModeKind::Rigid;
@@ -44,12 +65,32 @@ int cmd_info(const std::vector<std::string>& args) {
   for (int c = 0; c < b.mass.outerSize(); ++c)
     for (SpMat::InnerIterator it(b.mass, c); it; ++it)
       lumped = lumped && (it.row() == it.col() || it.value() == 0.0);
+  std::error_code ec;
+  const auto bytes = std::filesystem::file_size(path, ec);
 
   std::printf("body file:             %s\n", path.c_str());
+  if (!ec)
+    std::printf("file size:             %.3f MB (%ju bytes)\n", bytes / 1e6, std::uintmax_t(bytes));
+  std::printf("load time:             %.3f s (read %.3f s, add to a model %.3f s)\n",
+              t_read + t_add, t_read, t_add);
   std::printf("name:                  %s\n", b.name.c_str());
   std::printf("nodes:                 %d\n", N);
-  std::printf("mass matrix:           %s (%ld non-zeros)\n", lumped ? "lumped" : "consistent",
-              static_cast<long>(b.mass.nonZeros()));
+  if (b.reduced()) {
+    std::set<long> in_sets;
+    for (const auto& [name, ids] : b.node_sets) in_sets.insert(ids.begin(), ids.end());
+    std::printf("reduced:               yes, %d of %ld nodes kept (%zu in node sets, %zu extra)\n",
+                N, b.full_num_nodes, in_sets.size(), N - in_sets.size());
+    std::printf("mass matrix:           absent (reduced body; stored full-body data used)\n");
+  } else {
+    std::printf("reduced:               no (full body)\n");
+    std::printf("mass matrix:           %s (%ld non-zeros)\n", lumped ? "lumped" : "consistent",
+                static_cast<long>(b.mass.nonZeros()));
+  }
+  std::printf("stored invariants:     %s\n",
+              b.invariants && b.mass_props ? "yes (invariants and mass properties of the full body)"
+              : b.invariants               ? "invariants only"
+              : b.mass_props               ? "mass properties only"
+                                           : "no (computed from the nodes when loaded)");
   std::printf("modes:                 %d (%d rigid, %d elastic)\n", n, rigid, n - rigid);
   std::printf("node sets:            ");
   if (b.node_sets.empty()) std::printf(" (none)");
@@ -65,8 +106,8 @@ int cmd_info(const std::vector<std::string>& args) {
                 b.damping[k], zeta);
   }
 
-  const MassProperties mp = mass_properties(b.s, b.mass);
-  std::printf("\nmass properties (body axes):\n");
+  const MassProperties mp = body_mass_properties(b);
+  std::printf("\nmass properties (body axes%s):\n", b.mass_props ? ", stored" : "");
   std::printf("%-22s %.9g kg\n", "total mass", mp.mass);
   print_vec("centre of mass", mp.com, "m");
   std::printf("%-22s [% .6g, % .6g, % .6g]\n", "inertia about com", mp.inertia(0, 0),
@@ -77,7 +118,7 @@ int cmd_info(const std::vector<std::string>& args) {
   std::printf("%-22s (kg m^2)\n", "");
   print_vec("principal moments", mp.principal_moments, "kg m^2");
 
-  const ModalInvariants inv = compute_invariants(b);
+  const ModalInvariants inv = body_invariants(b);
   const Mat sumM = inv.M[0][0] + inv.M[1][1] + inv.M[2][2];
   const double norm_err = (sumM - Mat::Identity(n, n)).norm();
   double sym_err = 0.0;
@@ -85,12 +126,33 @@ int cmd_info(const std::vector<std::string>& args) {
     for (int c = 0; c < 3; ++c)
       sym_err = std::max(sym_err, (inv.M[a][c] - inv.M[c][a].transpose()).norm());
   double max_S = 0.0, max_R = 0.0;
-  const Mat R = rigid_basis(b.s, b.mass);
-  const Mat MR = apply_mass(b.mass, R);
+  const Mat P = rigid_participation(inv, mp);  // R^T M Phi from the invariants
   for (int k = 0; k < n; ++k) {
     if (b.kinds[k] != ModeKind::Elastic) continue;
     max_S = std::max(max_S, inv.S.col(k).cwiseAbs().maxCoeff());
-    max_R = std::max(max_R, (MR.transpose() * b.modes.col(k)).cwiseAbs().maxCoeff());
+    max_R = std::max(max_R, P.col(k).cwiseAbs().maxCoeff());
+  }
+  // Stored data of a full body against the nodes (relative to the largest entry).
+  double stored_err = -1.0;
+  if (!b.reduced() && (b.invariants || b.mass_props)) {
+    stored_err = 0.0;
+    auto rel = [](const auto& x, const auto& y) {
+      const double scale = std::max(x.cwiseAbs().maxCoeff(), y.cwiseAbs().maxCoeff());
+      return scale > 0.0 ? (x - y).cwiseAbs().maxCoeff() / scale : 0.0;
+    };
+    if (b.invariants) {
+      const ModalInvariants c = compute_invariants(b);
+      stored_err = std::max(stored_err, rel(c.S, inv.S));
+      for (int a = 0; a < 3; ++a)
+        for (int d = 0; d < 3; ++d)
+          stored_err =
+              std::max({stored_err, rel(c.p[a][d], inv.p[a][d]), rel(c.M[a][d], inv.M[a][d])});
+    }
+    if (b.mass_props) {
+      const MassProperties c = mass_properties(b.s, b.mass);
+      stored_err = std::max({stored_err, std::abs(c.mass - mp.mass) / mp.mass, rel(c.com, mp.com),
+                             rel(c.inertia, mp.inertia)});
+    }
   }
   std::printf("\ninvariant checks:\n");
   std::printf("%-26s %.3e\n", "||sum_a M_aa - I||", norm_err);
@@ -99,6 +161,8 @@ int cmd_info(const std::vector<std::string>& args) {
     std::printf("%-26s %.3e kg^0.5\n", "elastic max |S|", max_S);
     std::printf("%-26s %.3e\n", "elastic max |R^T M phi|", max_R);
   }
+  if (stored_err >= 0.0)
+    std::printf("%-26s %.3e (relative)\n", "stored vs from the nodes", stored_err);
   return 0;
 }
 

@@ -10,6 +10,7 @@
 #include "io/calculix.h"
 #include "io/fe_pipeline.h"
 #include "solver/body_builder.h"
+#include "solver/reduce_body.h"
 
 namespace evas::cli {
 
@@ -20,12 +21,16 @@ namespace {
 constexpr double kTwoPi = 6.283185307179586476925286766559;
 
 void print_body(const std::string& out, const ModalBody& body) {
-  const MassProperties mp = mass_properties(body.s, body.mass);
+  const MassProperties mp = body_mass_properties(body);
   std::printf(
       "wrote %s: body '%s', %d nodes, %d modes, mass %.6g kg, centre of mass (%.6g, %.6g, "
-      "%.6g) m\nelastic frequencies [Hz]:",
+      "%.6g) m\n",
       out.c_str(), body.name.c_str(), body.num_nodes(), body.num_modes(), mp.mass, mp.com.x(),
       mp.com.y(), mp.com.z());
+  if (body.reduced())
+    std::printf("reduced body: %d of %ld nodes kept (node sets and extra nodes), no mass matrix\n",
+                body.num_nodes(), body.full_num_nodes);
+  std::printf("elastic frequencies [Hz]:");
   for (int k = 0; k < body.num_modes(); ++k)
     if (body.kinds[k] == ModeKind::Elastic)
       std::printf(" %.6g", std::sqrt(std::max(0.0, body.eigenvalues[k])) / kTwoPi);
@@ -38,7 +43,9 @@ const char* kModalUsage =
     "                          --frd X.frd --dat X.dat --mas X.mas --dof X.dof) -o BODY.h5\n"
     "\n"
     "build:  runs gmsh -> ccx (matrix storage) -> the evas eigen-solver and writes the body\n"
-    "        file named in PARAMS.yaml, printing the wall time of each stage.\n"
+    "        file named in PARAMS.yaml, printing the wall time of each stage. With\n"
+    "        'reduce:' in PARAMS.yaml the body keeps only the nodes of its node sets (and\n"
+    "        extra nodes) plus the stored invariants of the full body (docs/body-format.md).\n"
     "import: reads CalculiX output. With --sti the modes are computed by evas from K and M;\n"
     "        with --frd/--dat ccx's own modes are used (the mass matrix still comes from\n"
     "        --mas/--dof). See docs/fe-pipeline.md.\n";

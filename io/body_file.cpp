@@ -4,6 +4,7 @@
 #include <set>
 
 #include "io/hdf5_util.h"
+#include "solver/invariants.h"
 
 namespace evas {
 
@@ -47,6 +48,9 @@ void write_body(hid_t file, const ModalBody& body) {
   h5::write_attribute(file, "name", body.name);
   h5::write_attribute(file, "length_unit", std::string("m"));
   h5::write_attribute(file, "mass_unit", std::string("kg"));
+  h5::write_attribute(file, "reduced", static_cast<long long>(body.reduced() ? 1 : 0));
+  if (body.reduced())
+    h5::write_attribute(file, "full_num_nodes", static_cast<long long>(body.full_num_nodes));
 
   {
     h5::Handle g = h5::create_group(file, "nodes");
@@ -55,7 +59,7 @@ void write_body(hid_t file, const ModalBody& body) {
     RowMat s = body.s;
     h5::write_doubles(g, "coordinates", {uN, 3}, s.data());
   }
-  {
+  if (!body.reduced()) {
     h5::Handle g = h5::create_group(file, "mass");
     if (is_diagonal(body.mass)) {
       Vec d = body.mass.diagonal();
@@ -88,6 +92,80 @@ void write_body(hid_t file, const ModalBody& body) {
       h5::write_int64s(g, name, {static_cast<hsize_t>(v.size())}, v.data());
     }
   }
+  if (body.invariants) {
+    const ModalInvariants& inv = *body.invariants;
+    h5::Handle g = h5::create_group(file, "invariants");
+    RowMat S = inv.S;
+    h5::write_doubles(g, "S", {3, un}, S.data());
+    std::vector<double> p, M;
+    p.reserve(9 * n);
+    M.reserve(9 * static_cast<std::size_t>(n) * n);
+    for (int a = 0; a < 3; ++a)
+      for (int b = 0; b < 3; ++b) {
+        p.insert(p.end(), inv.p[a][b].data(), inv.p[a][b].data() + n);
+        const RowMat Mab = inv.M[a][b];
+        M.insert(M.end(), Mab.data(), Mab.data() + Mab.size());
+      }
+    h5::write_doubles(g, "p", {3, 3, un}, p.data());
+    h5::write_doubles(g, "M", {3, 3, un, un}, M.data());
+  }
+  if (body.mass_props) {
+    const MassProperties& mp = *body.mass_props;
+    h5::Handle g = h5::create_group(file, "mass_properties");
+    h5::write_doubles(g, "mass", {1}, &mp.mass);
+    h5::write_doubles(g, "centre_of_mass", {3}, mp.com.data());
+    const Eigen::Matrix<double, 3, 3, Eigen::RowMajor> J = mp.inertia, E = mp.principal_axes;
+    h5::write_doubles(g, "inertia", {3, 3}, J.data());
+    h5::write_doubles(g, "principal_moments", {3}, mp.principal_moments.data());
+    h5::write_doubles(g, "principal_axes", {3, 3}, E.data());
+  }
+}
+
+// /invariants and /mass_properties (version 2, optional).
+void read_stored(hid_t file, ModalBody& body) {
+  std::vector<hsize_t> dims;
+  const hsize_t n = static_cast<hsize_t>(body.num_modes());
+  const Eigen::Index in = static_cast<Eigen::Index>(n);
+  if (h5::exists(file, "/invariants")) {
+    auto inv = std::make_shared<ModalInvariants>();
+    const std::vector<double> S = h5::read_doubles(file, "/invariants/S", dims);
+    expect_shape("/invariants/S", dims, {3, n});
+    expect_finite("/invariants/S", S);
+    inv->S = Eigen::Map<const RowMat>(S.data(), 3, in);
+    const std::vector<double> p = h5::read_doubles(file, "/invariants/p", dims);
+    expect_shape("/invariants/p", dims, {3, 3, n});
+    expect_finite("/invariants/p", p);
+    const std::vector<double> M = h5::read_doubles(file, "/invariants/M", dims);
+    expect_shape("/invariants/M", dims, {3, 3, n, n});
+    expect_finite("/invariants/M", M);
+    for (int a = 0; a < 3; ++a)
+      for (int b = 0; b < 3; ++b) {
+        const std::size_t ab = static_cast<std::size_t>(3 * a + b);
+        inv->p[a][b] = Eigen::Map<const Vec>(p.data() + ab * n, in);
+        inv->M[a][b] = Eigen::Map<const RowMat>(M.data() + ab * n * n, in, in);
+      }
+    body.invariants = std::move(inv);
+  }
+  if (h5::exists(file, "/mass_properties")) {
+    MassProperties mp;
+    auto read = [&](const std::string& name, const std::vector<hsize_t>& shape) {
+      const std::string path = "/mass_properties/" + name;
+      std::vector<double> v = h5::read_doubles(file, path, dims);
+      expect_shape(path, dims, shape);
+      expect_finite(path, v);
+      return v;
+    };
+    mp.mass = read("mass", {1})[0];
+    if (!(mp.mass > 0.0)) throw h5::Failure("dataset '/mass_properties/mass' must be positive");
+    const std::vector<double> c = read("centre_of_mass", {3});
+    mp.com = Vec3(c[0], c[1], c[2]);
+    using RowMat3 = Eigen::Matrix<double, 3, 3, Eigen::RowMajor>;
+    mp.inertia = Eigen::Map<const RowMat3>(read("inertia", {3, 3}).data());
+    const std::vector<double> pm = read("principal_moments", {3});
+    mp.principal_moments = Vec3(pm[0], pm[1], pm[2]);
+    mp.principal_axes = Eigen::Map<const RowMat3>(read("principal_axes", {3, 3}).data());
+    body.mass_props = mp;
+  }
 }
 
 ModalBody read_body(hid_t file) {
@@ -98,9 +176,20 @@ ModalBody read_body(hid_t file) {
   if (format != kBodyFormat)
     throw h5::Failure("attribute 'format' is '" + format + "', expected '" + kBodyFormat + "'");
   const long long version = h5::read_int_attribute(file, "version");
-  if (version != kBodyFormatVersion)
+  if (version < 1 || version > kBodyFormatVersion)
     throw h5::Failure("attribute 'version' is " + std::to_string(version) +
-                      ", this evas reads version " + std::to_string(kBodyFormatVersion));
+                      ", this evas reads versions 1 to " + std::to_string(kBodyFormatVersion));
+  // Version 2: a reduced body (a subset of the nodes, no mass matrix).
+  if (version >= 2 && h5::has_attribute(file, "reduced")) {
+    const long long r = h5::read_int_attribute(file, "reduced");
+    if (r != 0 && r != 1) throw h5::Failure("attribute 'reduced' must be 0 or 1");
+    if (r == 1) {
+      if (!h5::has_attribute(file, "full_num_nodes"))
+        throw h5::Failure("attribute 'full_num_nodes' is missing (required when reduced = 1)");
+      body.full_num_nodes = static_cast<long>(h5::read_int_attribute(file, "full_num_nodes"));
+      if (body.full_num_nodes < 1) throw h5::Failure("attribute 'full_num_nodes' must be >= 1");
+    }
+  }
   body.name = h5::read_string_attribute(file, "name");
   if (h5::has_attribute(file, "length_unit")) {
     const std::string u = h5::read_string_attribute(file, "length_unit");
@@ -133,8 +222,14 @@ ModalBody read_body(hid_t file) {
 
   // Mass.
   const int iN = static_cast<int>(N);
-  body.mass.resize(iN, iN);
-  if (h5::exists(file, "/mass/lumped")) {
+  if (body.reduced()) {
+    if (h5::exists(file, "/mass"))
+      throw h5::Failure("group '/mass' must be absent in a reduced body (reduced = 1)");
+    if (body.full_num_nodes < static_cast<long>(N))
+      throw h5::Failure("attribute 'full_num_nodes' is " + std::to_string(body.full_num_nodes) +
+                        ", less than the " + std::to_string(N) + " nodes stored");
+  } else if (h5::exists(file, "/mass/lumped")) {
+    body.mass.resize(iN, iN);
     const std::vector<double> m = h5::read_doubles(file, "/mass/lumped", dims);
     expect_shape("/mass/lumped", dims, {N});
     expect_finite("/mass/lumped", m);
@@ -147,6 +242,7 @@ ModalBody read_body(hid_t file) {
     }
     body.mass.setFromTriplets(trips.begin(), trips.end());
   } else if (h5::exists(file, "/mass/consistent")) {
+    body.mass.resize(iN, iN);
     const std::vector<long long> indptr = h5::read_int64s(file, "/mass/consistent/indptr", dims);
     expect_shape("/mass/consistent/indptr", dims, {N + 1});
     const std::vector<long long> indices = h5::read_int64s(file, "/mass/consistent/indices", dims);
@@ -219,6 +315,12 @@ ModalBody read_body(hid_t file) {
       body.node_sets[name].assign(set.begin(), set.end());
     }
   }
+
+  if (version >= 2) read_stored(file, body);
+  if (body.reduced() && (!body.invariants || !body.mass_props))
+    throw h5::Failure(std::string("group '") +
+                      (body.invariants ? "/mass_properties" : "/invariants") +
+                      "' is missing (required in a reduced body)");
   return body;
 }
 
@@ -251,6 +353,7 @@ ModalBody read_body_file(const std::string& path) {
       throw InputError(path + ": " + e.what());
     }
   }
+  body.source = path;
   try {
     body.validate();
   } catch (const InputError& e) {

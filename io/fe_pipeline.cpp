@@ -63,6 +63,12 @@ struct Yaml {
       fail(n, "'" + key + "' must be a finite number");
     return x;
   }
+  bool boolean(const YAML::Node& n, const std::string& key) const {
+    bool b = false;
+    if (!n.IsScalar() || !YAML::convert<bool>::decode(n, b))
+      fail(n, "'" + key + "' must be true or false");
+    return b;
+  }
   std::string text(const YAML::Node& n, const std::string& key) const {
     if (!n.IsScalar() || n.Scalar().empty()) fail(n, "'" + key + "' must be a text value");
     return n.Scalar();
@@ -99,7 +105,7 @@ PipelineParams read_pipeline_params(const std::string& yaml_path) {
   const Yaml y{yaml_path};
   y.keys(root, "the parameter file",
          {"name", "geometry", "parameters", "mesh_size", "units", "material", "modes", "ccx_eigen",
-          "ccx_modes", "work_dir", "output"});
+          "ccx_modes", "work_dir", "output", "store_invariants", "reduce"});
   const fs::path base = fs::absolute(fs::path(yaml_path)).parent_path();
   auto resolve = [&](const std::string& p) {
     const fs::path q(p);
@@ -159,6 +165,31 @@ PipelineParams read_pipeline_params(const std::string& yaml_path) {
       y.fail(m, "'max_frequency' and 'damping_ratio' must be >= 0");
   } else {
     p.build.num_elastic = 10;
+  }
+  if (root["store_invariants"])
+    p.store_invariants = y.boolean(root["store_invariants"], "store_invariants");
+  if (const YAML::Node r = root["reduce"]) {
+    y.keys(r, "reduce", {"keep_sets", "extra_nodes"});
+    ReduceOptions ro;
+    if (const YAML::Node k = r["keep_sets"]) {
+      if (k.IsScalar() && k.Scalar() == "all") {
+        ro.all_sets = true;
+      } else if (k.IsSequence()) {
+        ro.all_sets = false;
+        for (const auto& n : k) ro.keep_sets.push_back(y.text(n, "keep_sets"));
+      } else {
+        y.fail(k, "'keep_sets' must be 'all' or a list of node-set names");
+      }
+    }
+    if (const YAML::Node e = r["extra_nodes"]) {
+      if (!e.IsSequence()) y.fail(e, "'extra_nodes' must be a list of node ids");
+      for (const auto& n : e) {
+        const double id = y.number(n, "extra_nodes");
+        if (id != std::floor(id)) y.fail(n, "'extra_nodes' must be integer node ids");
+        ro.extra_nodes.push_back(static_cast<long>(id));
+      }
+    }
+    p.reduce = ro;
   }
   if (root["ccx_eigen"]) p.ccx_eigen = root["ccx_eigen"].as<bool>();
   if (root["ccx_modes"]) p.ccx_modes = static_cast<int>(y.number(root["ccx_modes"], "ccx_modes"));
@@ -302,6 +333,11 @@ PipelineResult run_pipeline(const PipelineParams& p, bool verbose) {
       InterfaceOptions io;
       io.damping_ratio = p.build.damping_ratio;
       res.body = add_interface_modes_by_name(res.fe, res.body, p.interface_sets, io);
+    });
+  if (p.store_invariants || p.reduce)
+    stage(p.reduce ? "invariants, reduce body" : "store invariants", [&] {
+      store_full_body_data(res.body);
+      if (p.reduce) res.body = reduce_body(res.body, *p.reduce);
     });
   if (p.ccx_eigen) {
     const int n = p.ccx_modes > 0 ? p.ccx_modes : std::max(16, 6 + p.build.num_elastic + 4);

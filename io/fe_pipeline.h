@@ -6,11 +6,13 @@
 #pragma once
 
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "io/calculix.h"
 #include "solver/body_builder.h"
+#include "solver/reduce_body.h"
 
 namespace evas {
 
@@ -31,6 +33,12 @@ struct PipelineParams {
   int ccx_modes = 0;       ///< modes asked from ccx (0: 6 + elastic + 4, at least 16)
   std::string work_dir;    ///< where meshes, decks, logs go (relative to the YAML)
   std::string output;      ///< body file (relative to the YAML)
+  /// Store the invariants and mass properties of the full body in the file
+  /// (format version 2; a simulation then does not recompute them).
+  bool store_invariants = true;
+  /// `reduce: {keep_sets: all | [names], extra_nodes: [ids]}`: write a reduced
+  /// body (solver/reduce_body.h); implies store_invariants.
+  std::optional<ReduceOptions> reduce;
 };
 
 /// Reads the YAML parameter file; relative paths are resolved against its folder.
@@ -44,7 +52,7 @@ struct StageTime {
 
 struct PipelineResult {
   FeModel fe;       ///< SI, from matrix storage
-  ModalBody body;   ///< from the evas builder
+  ModalBody body;   ///< from the evas builder (reduced when PipelineParams::reduce)
   std::string frd;  ///< ccx eigen-solution files when ccx_eigen (else empty)
   std::string dat;
   std::vector<StageTime> stages;

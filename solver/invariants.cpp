@@ -14,6 +14,7 @@ StridedMap component(const Mat& modes, int a) {
 }  // namespace
 
 ModalInvariants compute_invariants(const ModalBody& body) {
+  body.require_full("computing the modal invariants");
   ModalInvariants inv;
   const int n = body.num_modes();
   const SpMat& Ms = body.mass;
@@ -69,6 +70,7 @@ Mat3 rigid_rotation_correction(const Mat3& J, const Vec3& w, const Vec3& al) {
 Vec eq1_literal(const ModalBody& body, const Mat3& A, const Vec3& a_G, const Vec3& w_G,
                 const Vec3& al_G, const Vec& q, const Vec& qd, const Vec& qdd,
                 const Eigen::Matrix<double, Eigen::Dynamic, 3>& F_G) {
+  body.require_full("the literal Eq. 1 (sums over all nodes)");
   const int N = body.num_nodes(), n = body.num_modes();
   const Mat3 w_t = skew(w_G);
   const Mat3 AtWA = A.transpose() * (skew(al_G) + w_t * w_t) * A;

@@ -18,6 +18,8 @@ struct ModalInvariants {
   std::array<std::array<Mat, 3>, 3> M;  ///< M[a][b], n x n each
 };
 
+/// From the body's nodes and mass matrix (never the stored invariants); throws
+/// InputError for a reduced body (see solver/reduce_body.h body_invariants()).
 ModalInvariants compute_invariants(const ModalBody& body);
 
 /// The frame-dependent terms of Eq. 1 for one body at given LOF kinematics

@@ -2,29 +2,9 @@
 
 #include <cmath>
 
-namespace evas {
+#include "solver/reduce_body.h"
 
-namespace {
-// Locate the explicit rigid basis among the body's modes (needed for tracking).
-std::array<int, 6> find_rigid_modes(const ModalBody& b) {
-  std::array<int, 6> idx = {-1, -1, -1, -1, -1, -1};
-  bool any_rigid = false;
-  for (auto k : b.kinds) any_rigid = any_rigid || k == ModeKind::Rigid;
-  if (!any_rigid) return idx;
-  const Mat R = rigid_basis(b.s, b.mass);
-  const Mat MR = apply_mass(b.mass, R);
-  for (int r = 0; r < 6; ++r)
-    for (int j = 0; j < b.num_modes(); ++j) {
-      if (b.kinds[j] != ModeKind::Rigid) continue;
-      if ((b.modes.col(j) - R.col(r)).norm() <= 1e-8 * R.col(r).norm() &&
-          std::abs(MR.col(r).dot(b.modes.col(j)) - 1.0) < 1e-8) {
-        idx[r] = j;
-        break;
-      }
-    }
-  return idx;
-}
-}  // namespace
+namespace evas {
 
 int Model::add_body(const std::string& name, std::shared_ptr<const ModalBody> data,
                     const Lof& lof) {
@@ -34,13 +14,15 @@ int Model::add_body(const std::string& name, std::shared_ptr<const ModalBody> da
   Body b;
   b.name = name;
   b.data = std::move(data);
-  b.inv = compute_invariants(*b.data);
-  b.mp = mass_properties(b.data->s, b.data->mass);
+  // Stored invariants and mass properties (of the full body) when the body
+  // carries them, which a reduced body must; else computed from the nodes.
+  b.inv = body_invariants(*b.data);
+  b.mp = body_mass_properties(*b.data);
   b.lof = lof;
   b.offset = size_;
   b.q0 = Vec::Zero(b.n());
   b.v0 = Vec::Zero(b.n());
-  b.rigid = find_rigid_modes(*b.data);
+  b.rigid = find_rigid_modes(*b.data, b.inv, b.mp);
   if (lof.kind() == LofKind::Tracking)
     for (int r : b.rigid)
       if (r < 0)

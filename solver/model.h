@@ -31,7 +31,9 @@ class Model {
  public:
   Vec3 gravity = Vec3::Zero();  ///< [m/s^2], G components
 
-  /// Adds a body; computes its invariants and locates its rigid basis modes.
+  /// Adds a body: its invariants and mass properties (the stored ones of the
+  /// full body when it carries them, as a reduced body must; else computed from
+  /// its nodes) and the location of its rigid basis modes.
   int add_body(const std::string& name, std::shared_ptr<const ModalBody> data, const Lof& lof);
   int add_marker(Marker m);
   int add_element(std::unique_ptr<Element> e);
