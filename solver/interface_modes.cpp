@@ -187,6 +187,9 @@ ModalBody add_interface_modes(const FeModel& fe, const ModalBody& body,
   const int n0 = body.num_modes();
   const int m = static_cast<int>(Psi.cols());
   ModalBody out = body;
+  // New modes: invariants stored for the old ones no longer apply (Model::add_body
+  // recomputes them from the nodes; store_full_body_data stores them again).
+  out.invariants.reset();
   out.modes.conservativeResize(Eigen::NoChange, n0 + m);
   out.modes.rightCols(m) = Psi;
   out.eigenvalues.conservativeResize(n0 + m);

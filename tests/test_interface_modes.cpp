@@ -24,6 +24,7 @@
 
 #include "solver/body_builder.h"
 #include "solver/interface_modes.h"
+#include "solver/reduce_body.h"
 
 using namespace evas;
 
@@ -247,4 +248,14 @@ TEST(InterfaceModes, SeveralSetsAndRedundancy) {
   EXPECT_THROW(add_interface_modes_by_name(fe, b, {"nope"}, io), InputError);
   // Adding the modes again adds nothing: they are already in the basis.
   EXPECT_EQ(add_interface_modes(fe, bi, {s2}, InterfaceOptions{}).num_modes(), bi.num_modes());
+  // A body that carries stored invariants (format v2) gets a valid body back, whose
+  // invariants are those of the new mode set once stored again.
+  ModalBody bs = b;
+  store_full_body_data(bs);
+  ASSERT_TRUE(bs.invariants);
+  ModalBody bsi = add_interface_modes(fe, bs, {s2}, io);
+  EXPECT_FALSE(bsi.invariants);
+  EXPECT_NO_THROW(bsi.validate());
+  store_full_body_data(bsi);
+  EXPECT_NO_THROW(bsi.validate());
 }
