@@ -231,13 +231,16 @@ void JournalBearing::evaluate(double t, const MarkerMotion* m, MarkerLoad* loads
   const Vec3 a = R0.col(2);
   const Eigen::Matrix<double, 3, 2> P = R0.leftCols<2>();
   // The film model needs the journal to spin about the bearing axis (marker 0's z).
-  // A relative spin more than 30 deg off that axis means wrongly oriented markers.
+  // A relative spin more than 30 deg off that axis, with more than 10 rad/s across it
+  // (far beyond any tilting rate of a journal in its film), means wrongly oriented
+  // markers.
   const Vec3 w_rel = m[1].w - m[0].w;
   const double w_n = w_rel.norm();
-  if (w_n > 1.0 && a.cross(w_rel).norm() > 0.5 * w_n) {
+  const double w_across = a.cross(w_rel).norm();
+  if (w_across > 10.0 && w_across > 0.5 * w_n) {
     throw RunError(
         "journal bearing '" + name() + "': the journal spins about an axis " +
-        std::to_string(std::asin(std::min(1.0, a.cross(w_rel).norm() / w_n)) * 180 / M_PI) +
+        std::to_string(std::asin(std::min(1.0, w_across / w_n)) * 180 / M_PI) +
         " deg off the bearing axis (the z axis of the bearing marker) at t = " + std::to_string(t) +
         " s; give the bearing marker a rotation that turns its z axis onto the "
         "crank axis");

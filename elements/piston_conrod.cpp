@@ -284,9 +284,10 @@ ElementType piston_conrod_element_type() {
           "an in-line four firing 1-3-4-2)",
           false, 0, 0.0, 720.0),
       text_param("mode",
-                 "prescribed: theta = speed t + initial_angle (explicit in time); coupled: theta "
-                 "= rotation of the crankpin marker relative to the liner marker about "
-                 "crank_axis + initial_angle, reciprocating inertia solved implicitly",
+                 "prescribed: theta = speed t + initial_angle - firing_phase (explicit in time); "
+                 "coupled: theta = rotation of the crankpin marker relative to the liner "
+                 "marker about crank_axis + initial_angle - firing_phase, reciprocating "
+                 "inertia solved implicitly",
                  {"prescribed", "coupled"}, "prescribed"),
       scalar_param("speed", "rad/s",
                    "prescribed crank speed (3000 rpm = 314.159 rad/s); required in mode "

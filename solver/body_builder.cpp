@@ -269,12 +269,14 @@ ModalBody build_modal_body(const std::string& name, const FeModel& fe, const Bui
            "sparse Cholesky of K + s M failed: K is indefinite, or a part of the model "
            "without mass is loose");
     const Mat R0 = rigid_basis(fe.s, fe.Ms);
-    auto sixth_rigid_content = [&](const EigenPairs& e) {
-      if (e.values.size() < 6) return 0.0;
+    // sixth (and fifth) largest rigid content of the eigenvectors found
+    auto rigid_content_56 = [&](const EigenPairs& e) {
+      if (e.values.size() < 6) return Eigen::Vector2d(0.0, 0.0);
       Vec c = (R0.transpose() * apply_mass(fe.Ms, e.vectors)).colwise().squaredNorm().transpose();
       std::sort(c.data(), c.data() + c.size(), std::greater<double>());
-      return c[5];
+      return Eigen::Vector2d(c[4], c[5]);
     };
+    int rigid_retries = 0;
     int nev = 6 + (opt.num_elastic > 0 ? opt.num_elastic : 20) + kSpectraMargin;
     for (;;) {
       if (nev > n / 2) {
@@ -289,7 +291,13 @@ ModalBody build_modal_body(const std::string& name, const FeModel& fe, const Bui
       // Lanczos finds a 6-fold eigenvalue slowly: with a small subspace one of the
       // rigid directions can be missing (seen on a 95k-DOF block asked for 6 modes).
       // Then a larger subspace is tried, as for a short count.
-      if ((count_ok || cut_ok) && sixth_rigid_content(ep) >= 0.5) break;
+      // At most twice (a supported, not free, model fails below with its own
+      // message after at most two larger solves).
+      if (count_ok || cut_ok) {
+        const Eigen::Vector2d c = rigid_content_56(ep);
+        if (c[1] >= 0.5 || rigid_retries >= 2) break;
+        ++rigid_retries;
+      }
       nev *= 2;
     }
 #else

@@ -46,7 +46,8 @@ class Problem {
     return false;
   }
   /// Body part of f for fixed-point methods (the paper's Steps <4>-<6>):
-  /// f = f0(t) + KB q + CB v + (element loads), with KB, CB block-diagonal per
+  /// f = f0(t) + KB q + CB v + (element loads) (times M^-1 when a System has
+  /// inertial elements: KB, CB then leave M^-1 out), with KB, CB block-diagonal per
   /// body and on jacobian_pattern(). Default: no body part (KB = CB = 0).
   virtual void body_operator(double t, SpMat& KB, SpMat& CB) {
     (void)t;

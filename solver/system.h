@@ -14,7 +14,8 @@
 // force() returns the eliminated f = M^-1 f_0 (Woodbury: one r x r solve), so
 // that qdd + f = 0 still holds and no integrator needs to know; force_jacobian()
 // returns M^-1 K, M^-1 C (K, C at the solved accelerations, without the
-// derivative of the LOF's acceleration terms). The pattern gets the blocks the
+// derivative of the accelerations at qdd = 0, i.e. of the LOF and velocity terms
+// 2 w x (A Bu v), w x (A Bt v)). The pattern gets the blocks the
 // product fills: inertial bodies x their neighbours. See docs/theory.md s.2.6.
 #pragma once
 
@@ -42,7 +43,8 @@ class System : public Problem {
 
   /// Marker motions at (t, q, v), accelerations at qdd = 0 (MarkerMotion::a).
   void update_markers(double t, const double* q, const double* v);
-  /// Marker motions with the full accelerations (qdd = -f solved): for outputs.
+  /// Marker motions for outputs; with inertial elements also the full accelerations
+  /// (qdd = -f solved), else the accelerations at qdd = 0.
   void observe(double t, const double* q, const double* v);
   /// Total rank of the inertial elements (0: M = I).
   int inertia_rank() const { return rank_; }
