@@ -55,6 +55,8 @@ System::System(Model& model) : model_(model) {
       piecewise_ = piecewise_ || el.inertia_piecewise();
       ework_[e].P = Mat::Zero(6 * k, r);
       ework_[e].Q = Mat::Zero(6 * k, r);
+      ework_[e].dacc = Vec::Zero(6 * k);
+      ework_[e].r_1 = Vec::Zero(r);
       ework_[e].col = rank_;
       rank_ += r;
     }
@@ -242,14 +244,14 @@ void System::solve_inertia(double t, double* f) {
       el.evaluate(t, w.motion.data(), w.loads.data());
       el.inertia(t, w.motion.data(), w.P, w.Q);
       // loads at the accelerations of qdd = 0 by the affine model about w.motion
-      Vec dacc(6 * ids.size());
       for (std::size_t i = 0; i < ids.size(); ++i)
-        dacc.segment<6>(6 * i) << w.motion[i].a - motion_[ids[i]].a,
+        w.dacc.segment<6>(6 * i) << w.motion[i].a - motion_[ids[i]].a,
             w.motion[i].al - motion_[ids[i]].al;
-      const Vec corr = w.P * (w.Q.transpose() * dacc);
+      w.r_1.noalias() = w.Q.transpose() * w.dacc;
+      w.dacc.noalias() = w.P * w.r_1;  // now the load correction
       for (std::size_t i = 0; i < ids.size(); ++i) {
-        apply_load(ids[i], w.loads[i].F - corr.segment<3>(6 * i),
-                   w.loads[i].M - corr.segment<3>(6 * i + 3), f);
+        apply_load(ids[i], w.loads[i].F - w.dacc.segment<3>(6 * i),
+                   w.loads[i].M - w.dacc.segment<3>(6 * i + 3), f);
         const Marker& m = markers[ids[i]];
         if (m.on_ground()) continue;
         const Body& B = bodies[m.body];
@@ -288,9 +290,10 @@ void System::solve_inertia(double t, double* f) {
         }
         Vec6 old;
         old << w.motion[i].a, w.motion[i].al;
-        const auto dq = (w.Q.middleRows<6>(6 * i).transpose() * (acc - old)).eval();
-        const auto aq = (w.Q.middleRows<6>(6 * i).transpose() * acc).eval();
-        change = std::max(change, dq.cwiseAbs().maxCoeff() / (1.0 + aq.cwiseAbs().maxCoeff()));
+        for (int c = 0; c < w.Q.cols(); ++c) {
+          const auto qc = w.Q.col(c).segment<6>(6 * i);
+          change = std::max(change, std::abs(qc.dot(acc - old)) / (1.0 + std::abs(qc.dot(acc))));
+        }
         w.motion[i].a = acc.head<3>();
         w.motion[i].al = acc.tail<3>();
       }
@@ -359,9 +362,12 @@ void System::add_block(double* values, int bi, int bj, const Eigen::Ref<const Ma
 void System::force_jacobian(double t, const double* q, const double* v, SpMat& K, SpMat& C) {
   ++counters.jac_evals;
   // inertial elements: solve the accelerations first (their D is taken there)
-  if (rank_ > 0) force_impl(t, q, v, scratch_f_.data());
+  // (force_impl updates the markers; without inertial elements update them here)
+  if (rank_ > 0)
+    force_impl(t, q, v, scratch_f_.data());
+  else
+    update_markers(t, q, v);
   body_operator(t, K, C);
-  update_markers(t, q, v);
   const auto& markers = model_.markers();
   const auto& bodies = model_.bodies();
   for (std::size_t m = 0; m < markers.size(); ++m)

@@ -57,8 +57,9 @@ class System : public Problem {
     std::vector<MarkerMotion> motion;
     std::vector<MarkerLoad> loads;
     Mat D;
-    Mat P, Q;     // inertial elements: 6k x r
-    int col = 0;  // first column of this element in U, W
+    Mat P, Q;       // inertial elements: 6k x r
+    Vec dacc, r_1;  // scratch: 6k accelerations, r-vector
+    int col = 0;    // first column of this element in U, W
   };
   struct BodyWork {
     Vec f0;

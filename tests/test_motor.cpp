@@ -13,6 +13,7 @@
 
 #include <cmath>
 
+#include "disk_body.h"
 #include "elements/motor.h"
 #include "integrators/integrator.h"
 #include "solver/system.h"
@@ -21,33 +22,7 @@ using namespace evas;
 
 namespace {
 
-// Rigid disk: N nodes on a ring of radius r in the y-z plane (axis x), equal
-// masses; the single mode is the mass-normalised small rotation about x.
-std::shared_ptr<ModalBody> disk(double J, double r = 0.1, int N = 12) {
-  auto b = std::make_shared<ModalBody>();
-  b->name = "disk";
-  const double mi = J / (N * r * r);
-  b->s.resize(N, 3);
-  std::vector<Triplet> t;
-  for (int i = 0; i < N; ++i) {
-    const double a = 2 * M_PI * i / N;
-    b->node_ids.push_back(i + 1);
-    b->s.row(i) << 0.0, r * std::cos(a), r * std::sin(a);
-    t.emplace_back(i, i, mi);
-  }
-  b->mass.resize(N, N);
-  b->mass.setFromTriplets(t.begin(), t.end());
-  b->modes.resize(3 * N, 1);
-  for (int i = 0; i < N; ++i)
-    b->modes.block<3, 1>(3 * i, 0) =
-        Vec3::UnitX().cross(Vec3(b->s.row(i).transpose())) / std::sqrt(J);
-  b->eigenvalues = Vec::Zero(1);
-  b->damping = Vec::Zero(1);
-  b->kinds = {ModeKind::Rigid};
-  std::vector<long> all(b->node_ids.begin(), b->node_ids.end());
-  b->node_sets["all"] = all;
-  return b;
-}
+std::shared_ptr<ModalBody> disk(double J) { return test_bodies::disk("disk", J); }
 
 int disk_marker(Model& m, int body, const std::string& name) {
   const auto& d = *m.bodies()[body].data;

@@ -28,6 +28,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "disk_body.h"
 #include "elements/piston_conrod.h"
 #include "elements/spring_damper.h"
 #include "fd_check.h"
@@ -43,43 +44,6 @@ constexpr double kR = 0.0575, kL = 0.19, kBore = 0.106;
 constexpr double kMp = 2.0, kM1 = 0.6, kM2 = 1.2, kHL = 0.19;
 constexpr double kOmega = 314.159;  // 3000 rpm
 constexpr double kDeg = M_PI / 180.0;
-
-// Rigid disk (N nodes on a ring of radius 0.1 m in the y-z plane) whose single mode
-// is the rigid basis' rotation about its axis x (so the System finds it as a rigid
-// mode and applies the rigid-rotation correction of the spinning frame).
-std::shared_ptr<ModalBody> disk(double J, int N = 24) {
-  auto b = std::make_shared<ModalBody>();
-  b->name = "crank";
-  const double r = 0.1, mi = J / (N * r * r);
-  b->s.resize(N, 3);
-  std::vector<Triplet> t;
-  for (int i = 0; i < N; ++i) {
-    const double a = 2 * M_PI * i / N;
-    b->node_ids.push_back(i + 1);
-    b->s.row(i) << 0.0, r * std::cos(a), r * std::sin(a);
-    t.emplace_back(i, i, mi);
-  }
-  b->mass.resize(N, N);
-  b->mass.setFromTriplets(t.begin(), t.end());
-  const MassProperties mp = mass_properties(b->s, b->mass);
-  const Mat Rb = rigid_basis(b->s, b->mass);
-  int k = 0;  // principal axis along x
-  for (int i = 0; i < 3; ++i)
-    if (std::abs(mp.principal_axes(0, i)) > 0.99) k = i;
-  b->modes = Rb.col(3 + k);
-  b->eigenvalues = Vec::Zero(1);
-  b->damping = Vec::Zero(1);
-  b->kinds = {ModeKind::Rigid};
-  b->node_sets["all"] = std::vector<long>(b->node_ids.begin(), b->node_ids.end());
-  return b;
-}
-
-/// Rotation of the disk per unit modal coordinate, about +x [rad].
-double rotation_per_q(const ModalBody& b) {
-  const Vec3 s = b.s.row(1).transpose();
-  const Vec3 u = b.modes.block<3, 1>(3, 0);
-  return Vec3::UnitX().dot(s.cross(u)) / s.squaredNorm();
-}
 
 struct Rig {
   std::unique_ptr<Model> model;
@@ -117,8 +81,8 @@ Rig rig(double J, double lof_speed, std::shared_ptr<const PressureTable> gas, do
   Rig r;
   r.model = std::make_unique<Model>();
   r.J = J;
-  auto d = disk(J);
-  r.c = rotation_per_q(*d);
+  auto d = test_bodies::disk("crank", J, 0.1, 24);
+  r.c = test_bodies::rotation_per_q(*d);
   const int b = r.model->add_body(
       "crank", d,
       Lof::spin(Vec3::Zero(), Mat3::Identity(), Vec3::UnitX(), 0.0, {0.0}, {lof_speed}));
