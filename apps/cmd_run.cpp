@@ -9,6 +9,7 @@
 
 #include "apps/commands.h"
 #include "integrators/integrator.h"
+#include "integrators/settings.h"
 #include "io/outputs.h"
 #include "io/results.h"
 #include "io/scene.h"
@@ -62,14 +63,22 @@ int cmd_run(const std::vector<std::string>& args) {
   opts.add_options()("help,h", "show this help")(
       "integrator", po::value<std::string>(),
       "integrator: ida, cvode, generalized-alpha, linear-acceleration")(
-      "rtol", po::value<double>(), "relative tolerance (adaptive integrators)")(
-      "atol", po::value<double>(), "absolute tolerance (adaptive integrators)")(
-      "step", po::value<double>(), "fixed step [s] (generalized-alpha, linear-acceleration)")(
+      "rtol", po::value<std::string>(), "relative tolerance (adaptive integrators)")(
+      "atol", po::value<std::string>(), "absolute tolerance (adaptive integrators)")(
+      "step", po::value<std::string>(), "fixed step [s] (generalized-alpha, linear-acceleration)")(
+      "set,s", po::value<std::vector<std::string>>()->composing(),
+      "KEY=VALUE: any integrator setting, repeatable (see --help-settings); applied after "
+      "the scene's integrator block and the options above")(
+      "help-settings", "list every integrator setting with its default and meaning")(
       "t-end", po::value<double>(), "end time [s] (overrides the scene)")(
       "out", po::value<std::string>(), "output directory (default out/<scene name>)")(
       "csv", "also write DIR/results.csv")("quiet,q", "no progress line");
   po::variables_map vm;
   if (parse_args(args, opts, {"scene"}, vm)) return 0;
+  if (vm.count("help-settings")) {
+    std::cout << settings_reference();
+    return 0;
+  }
   if (!vm.count("scene")) {
     std::cerr << "evas run: missing SCENE file\n" << opts << "\n";
     return 1;
@@ -79,15 +88,18 @@ int cmd_run(const std::vector<std::string>& args) {
   // --- input: everything here exits 1 on InputError (caught in main) ---
   Scene scene = read_scene(vm["scene"].as<std::string>());
   IntegratorSettings& set = scene.integrator;
-  if (vm.count("integrator")) set.name = vm["integrator"].as<std::string>();
-  auto positive = [&](const char* key) {
-    const double x = vm[key].as<double>();
-    if (!(x > 0.0)) throw InputError(std::string("--") + key + " must be > 0");
-    return x;
-  };
-  if (vm.count("rtol")) set.rtol = positive("rtol");
-  if (vm.count("atol")) set.atol = positive("atol");
-  if (vm.count("step")) set.step = positive("step");
+  if (vm.count("integrator"))
+    set_integrator_setting(set, "name", vm["integrator"].as<std::string>());
+  for (const char* key : {"rtol", "atol", "step"})
+    if (vm.count(key)) {
+      try {
+        set_integrator_setting(set, key, vm[key].as<std::string>());
+      } catch (const InputError& e) {
+        throw InputError(std::string("--") + e.what());
+      }
+    }
+  if (vm.count("set"))
+    for (const auto& a : vm["set"].as<std::vector<std::string>>()) apply_setting_assignment(set, a);
   if (vm.count("t-end")) {
     scene.t_end = vm["t-end"].as<double>();
     if (!(scene.t_end > scene.t_start))

@@ -68,7 +68,7 @@ void Belt::span(const Vec3& n, const Vec3& ci, const Vec3& cj, double ri, double
     os << "element '" << name() << "': pulleys at (" << ci.transpose() << ") and ("
        << cj.transpose() << ") with radii " << ri << ", " << rj
        << " m have no common tangent (centre distance " << D << " m in the belt plane)";
-    throw RunError(os.str());
+    throw RangeError(os.str());
   }
   const double a = std::sqrt(1.0 - b * b);
   const Vec3 e = d / D;

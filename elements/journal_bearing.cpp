@@ -181,12 +181,13 @@ FilmForce JournalBearing::hydro(const V2& e, const V2& ed, double om, double wei
 void JournalBearing::fail_if_closed(double t, double e) const {
   const double eps = e / p_.clearance;
   if (!(eps < 1.0))
-    throw RunError("journal bearing '" + name() + "': film closed, eccentricity ratio " + fmt(eps) +
-                   " >= 1 at t = " + fmt(t) + " s");
+    throw RangeError("journal bearing '" + name() + "': film closed, eccentricity ratio " +
+                     fmt(eps) + " >= 1 at t = " + fmt(t) + " s");
   if (eps > p_.eps_max && !(p_.contact_stiffness > 0.0))
-    throw RunError("journal bearing '" + name() + "': eccentricity ratio " + fmt(eps) +
-                   " >= eps_max = " + fmt(p_.eps_max) + " at t = " + fmt(t) +
-                   " s (film nearly closed; set contact_stiffness > 0 to model asperity contact)");
+    throw RangeError(
+        "journal bearing '" + name() + "': eccentricity ratio " + fmt(eps) +
+        " >= eps_max = " + fmt(p_.eps_max) + " at t = " + fmt(t) +
+        " s (film nearly closed; set contact_stiffness > 0 to model asperity contact)");
 }
 
 FilmForce JournalBearing::film(double t, const V2& e, const V2& ed, double om, double weight,
@@ -238,7 +239,7 @@ void JournalBearing::evaluate(double t, const MarkerMotion* m, MarkerLoad* loads
   const double w_n = w_rel.norm();
   const double w_across = a.cross(w_rel).norm();
   if (w_across > 10.0 && w_across > 0.5 * w_n) {
-    throw RunError(
+    throw RangeError(
         "journal bearing '" + name() + "': the journal spins about an axis " +
         std::to_string(std::asin(std::min(1.0, w_across / w_n)) * 180 / M_PI) +
         " deg off the bearing axis (the z axis of the bearing marker) at t = " + std::to_string(t) +

@@ -64,6 +64,7 @@ class CvodeIntegrator final : public Integrator {
       check(CVodeSetNonlinearSolver(mem_, nls_.get()), "CVodeSetNonlinearSolver");
     }
     if (s.max_step > 0.0) check(CVodeSetMaxStep(mem_, s.max_step), "CVodeSetMaxStep");
+    if (s.max_order > 0) check(CVodeSetMaxOrd(mem_, s.max_order), "CVodeSetMaxOrd");
     check(CVodeSetMaxNumSteps(mem_, s.max_steps), "CVodeSetMaxNumSteps");
     t_ = t0;
   }
@@ -185,7 +186,12 @@ class CvodeIntegrator final : public Integrator {
     std::string msg = "cvode (" + s_.method + "): " + why + " at t = " + format_number(tn) + " s";
     if (!last_error_.empty()) msg += " (" + last_error_ + ")";
     const std::string cb = guard_.take_message();
-    if (!cb.empty()) msg += "; model error: " + cb;
+    if (!cb.empty())
+      msg += guard_.recoverable > 0 ? "; the model refused " + std::to_string(guard_.recoverable) +
+                                          " trial states (the solver cut the step each time), "
+                                          "last: " +
+                                          cb
+                                    : "; model error: " + cb;
     const double* y = y_.data();
     if (CVodeGetDky(mem_, tn, 0, ytmp_.get()) == CV_SUCCESS) y = ytmp_.data();
     msg += "; state: " + p_->describe_state(tn, y, y + n_);

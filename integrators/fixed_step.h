@@ -1,17 +1,32 @@
-// Private base of the fixed-step integrators (generalized-alpha,
-// linear-acceleration): stepping to outputs and stops, dense output and
-// restarts. A derived class implements only one step.
+// Private base of the Newmark-family integrators (generalized-alpha,
+// linear-acceleration): stepping to outputs and stops, step control, dense
+// output and restarts. A derived class implements one step and its local error
+// estimate.
 //
 // advance(tout, land):
-//   steps of settings.step; a step is never taken across the problem's next
-//   stop, and when landing the last step is shortened to end exactly on tout
-//   (the following step is of full length again). A step that would end within
+//   steps are never taken across the problem's next stop, and when landing the
+//   last step is shortened to end exactly on tout. A step that would end within
 //   1e-9 h of tout is stretched/shortened to end on tout, so outputs on the step
 //   grid are step states, not interpolations.
 //   Outputs between steps are cubic Hermite interpolants on the bracketing step
 //   states: q from (q, v) at both ends, v from (v, a) at both ends. Both are
-//   O(h^4) locally, so the second-order accuracy of the states is kept, and the
-//   stepping itself is not disturbed.
+//   O(h^4) locally, so the second-order accuracy of the states is kept.
+//
+// Step control (settings.step_control):
+//   fixed     steps of settings.step; a step whose iteration fails ends the run.
+//   substep   steps of settings.step; a failed step is retried over the same
+//             interval with sub-steps (halved after each failure, doubled again
+//             after a success, never beyond the interval), counted in
+//             stats.substeps; the run fails when a sub-step would fall below
+//             settings.min_step. The step grid is the same as with `fixed`.
+//   adaptive  from settings.step, each step's local error estimate e (from the
+//             derived class) is measured in the weighted RMS norm of SUNDIALS,
+//             w_i = 1 / (rtol |y_i| + atol) over q and v; the step is accepted
+//             when ||e|| <= 1 and the next is h * clamp(0.9 ||e||^(-1/3), 0.2, 2)
+//             (local error O(h^3) for both methods), a rejected step
+//             (stats.error_test_failures) is retried with that factor, and a step
+//             whose iteration fails (stats.convergence_failures) with h / 4.
+//             Bounded by settings.min_step (failure) and settings.max_step.
 // restart(t, q, v): a = -f(t, q, v) and continue.
 #pragma once
 
@@ -31,6 +46,11 @@ class FixedStepIntegrator : public Integrator {
     if (!(s.step > 0.0) || !std::isfinite(s.step))
       throw InputError(name() + ": step must be > 0 (got " + format_number(s.step) + ")");
     if (s.max_iterations < 1) throw InputError(name() + ": max_iterations must be >= 1");
+    if (s.step_control != "fixed" && s.step_control != "substep" && s.step_control != "adaptive")
+      throw InputError(name() + ": step_control '" + s.step_control +
+                       "' is unknown (fixed, substep, adaptive)");
+    if (s.step_control == "adaptive" && s.max_step > 0.0 && s.max_step < s.min_step)
+      throw InputError(name() + ": max_step is below min_step");
     p_ = &p;
     s_ = s;
     n_ = p.size();
@@ -43,6 +63,9 @@ class FixedStepIntegrator : public Integrator {
     v1_.resize(n_);
     a1_.resize(n_);
     f1_.resize(n_);
+    a_prev_.resize(n_);
+    h_ = s.step;
+    if (s.max_step > 0.0) h_ = std::min(h_, s.max_step);
     setup();
     start(t0);
   }
@@ -54,35 +77,53 @@ class FixedStepIntegrator : public Integrator {
       throw RunError(name() + ": output time " + format_number(tout) + " s is not after " +
                      format_number(tout_last_) + " s");
     }
-    const double h_nominal = s_.step;
-    const double snap = 1e-9 * h_nominal;
-    while (t_ < tout - snap) {
+    const bool adaptive = s_.step_control == "adaptive";
+    while (true) {
       // h stays bit-identical to settings.step unless the step is cut (so the
       // derived classes can keep their factorizations)
-      double h = h_nominal;
+      const double h_plan = adaptive ? h_ : s_.step;
+      const double snap = 1e-9 * h_plan;
+      if (!(t_ < tout - snap)) break;
+      double h = h_plan;
       double t_end = t_ + h;
       const double stop = p_->next_stop(t_);  // never step across a stop
-      if (stop < t_end + snap) {
-        t_end = stop;
-        h = t_end - t_;
+      if (stop < t_end + snap) t_end = stop;
+      if (t_end > tout - snap && (land || t_end < tout + snap)) t_end = tout;
+      h = t_end - t_;
+      const bool cut = h < h_plan;
+      if (!adaptive) {
+        take_interval(h);
+        continue;
       }
-      if (t_end > tout - snap && (land || t_end < tout + snap)) {
-        t_end = tout;
-        h = t_end - t_;
+      if (h < s_.min_step && cut) {  // a sliver before a stop or output: take it as it is
+        if (!try_step(h)) fail_below_min_step(h);
+        accept(h);
+        continue;
       }
-      step(t_, h);
-      // the new state becomes current; the old one is kept for interpolation
-      t_prev_ = t_;
-      t_ = t_end;
-      q_.swap(q1_);
-      v_.swap(v1_);
-      a_.swap(a1_);
-      f_.swap(f1_);
-      ++stats_.steps;
-      stats_.last_step = h;
-      note_step(stats_, h);
+      if (!try_step(h)) {
+        ++stats_.convergence_failures;
+        h_ = 0.25 * h;
+        if (h_ < s_.min_step) fail_below_min_step(h_);
+        continue;
+      }
+      const double err = weighted_norm(h);
+      const double fac = std::isfinite(err) && err > 0.0
+                             ? std::clamp(0.9 * std::pow(err, -1.0 / 3.0), 0.2, 2.0)
+                             : (err == 0.0 ? 2.0 : 0.2);
+      if (!(err <= 1.0)) {
+        ++stats_.error_test_failures;
+        h_ = h * fac;
+        if (h_ < s_.min_step) fail_below_min_step(h_);
+        continue;
+      }
+      accept(h);
+      // a step cut short for a stop or an output says little about the next one:
+      // keep the planned step unless the error asks for a smaller one
+      const double h_next = cut ? std::min(h_, h * fac) : h * fac;
+      h_ = s_.max_step > 0.0 ? std::min(h_next, s_.max_step) : h_next;
+      h_ = std::max(h_, s_.min_step);
     }
-    if (std::abs(t_ - tout) <= snap) {  // on a step (exactly, except for sub-1e-9 h slivers)
+    if (std::abs(t_ - tout) <= 1e-9 * std::max(t_ - t_prev_, 1e-300)) {  // on a step
       q = q_;
       v = v_;
     } else {
@@ -105,15 +146,22 @@ class FixedStepIntegrator : public Integrator {
  protected:
   /// Called once per init() after the state vectors are sized.
   virtual void setup() = 0;
-  /// One step from (t, q_, v_, a_, f_) to t + h, writing q1_, v1_, a1_ and
-  /// f1_ (the force the method associates with the new state). Throws RunError.
-  virtual void step(double t, double h) = 0;
+  /// One step from (t, q_, v_, a_, f_) to t + h, writing q1_, v1_, a1_ and f1_
+  /// (the force the method associates with the new state). Returns false, with
+  /// the reason in failure_, when the iteration does not converge; may throw
+  /// RangeError for the same reason (an element refusing a trial state).
+  virtual bool step(double t, double h) = 0;
+  /// Local error estimate of the step just taken (q1_ - q(t + h), v1_ - v(t + h)),
+  /// written into eq, ev; `hist` is false when no earlier step exists since the
+  /// last start (a_prev_, h_prev_ undefined).
+  virtual void local_error(double h, bool hist, Vec& eq, Vec& ev) const = 0;
 
   /// Current state (t_, q_, v_) with a_ = -f and f_ = f(t, q, v).
   void start(double t) {
     t_ = t;
     t_prev_ = t;
     tout_last_ = t;
+    have_prev_ = false;
     p_->force(t, q_.data(), v_.data(), f_.data());
     ++stats_.residual_evals;
     a_ = -f_;
@@ -132,21 +180,102 @@ class FixedStepIntegrator : public Integrator {
   double t_ = 0.0;
   Vec q_, v_, a_, f_;      // state at t_
   Vec q1_, v1_, a1_, f1_;  // written by step(); after the swap: the state at t_prev_
+  Vec a_prev_;             // acceleration of the step before the current one
+  double h_prev_ = 0.0;    // its length
+  std::string failure_;    // why the last step() returned false
 
  private:
+  // step() with a trial state outside an element's range turned into a failed
+  // step (any other error ends the run)
+  bool try_step(double h) {
+    failure_.clear();
+    bool ok = false;
+    try {
+      ok = step(t_, h);
+    } catch (const RangeError& e) {
+      failure_ = e.what();
+      ok = false;
+    }
+    if (!ok && failure_.empty()) failure_ = "the iteration failed";
+    return ok;
+  }
+
+  void accept(double h) {
+    a_prev_ = a_;
+    h_prev_ = h;
+    have_prev_ = true;
+    t_prev_ = t_;
+    t_ += h;
+    q_.swap(q1_);
+    v_.swap(v1_);
+    a_.swap(a1_);
+    f_.swap(f1_);
+    ++stats_.steps;
+    stats_.last_step = h;
+    note_step(stats_, h);
+  }
+
+  // The interval [t_, t_ + h] with steps of h, cut into sub-steps where needed.
+  void take_interval(double h) {
+    if (try_step(h)) {
+      accept(h);
+      return;
+    }
+    ++stats_.convergence_failures;
+    if (s_.step_control == "fixed") throw RunError(failure_);
+    const double t_end = t_ + h;
+    double hs = 0.5 * h;
+    while (t_end - t_ > 1e-9 * h) {
+      const double rest = t_end - t_;
+      const double hh = hs >= rest * (1.0 - 1e-9) ? rest : hs;
+      if (hh < s_.min_step) fail_below_min_step(hh);
+      if (try_step(hh)) {
+        accept(hh);
+        ++stats_.substeps;
+        hs = std::min(2.0 * hh, t_end - t_);
+      } else {
+        ++stats_.convergence_failures;
+        hs = 0.5 * hh;
+      }
+    }
+    t_ = t_end;  // remove round-off of the sum of sub-steps
+  }
+
+  [[noreturn]] void fail_below_min_step(double h) const {
+    throw RunError(name() + ": the step would fall to " + format_number(h) +
+                   " s, below min_step = " + format_number(s_.min_step) +
+                   " s; last failure: " + failure_);
+  }
+
+  double weighted_norm(double h) {
+    eq_.resize(n_);
+    ev_.resize(n_);
+    local_error(h, have_prev_, eq_, ev_);
+    double sum = 0.0;
+    for (int i = 0; i < n_; ++i) {
+      const double wq = 1.0 / (s_.rtol * std::max(std::abs(q1_[i]), std::abs(q_[i])) + s_.atol);
+      const double wv = 1.0 / (s_.rtol * std::max(std::abs(v1_[i]), std::abs(v_[i])) + s_.atol);
+      sum += eq_[i] * eq_[i] * wq * wq + ev_[i] * ev_[i] * wv * wv;
+    }
+    return std::sqrt(sum / (2.0 * n_));
+  }
+
   void interpolate(double t, Vec& q, Vec& v) const {
     const double h = t_ - t_prev_;
     const double s = (t - t_prev_) / h;
     const double s2 = s * s, s3 = s2 * s;
     const double h00 = 2 * s3 - 3 * s2 + 1, h10 = s3 - 2 * s2 + s;
     const double h01 = -2 * s3 + 3 * s2, h11 = s3 - s2;
-    // previous state lives in the *1_ vectors after the swap in advance()
+    // previous state lives in the *1_ vectors after the swap in accept()
     q = h00 * q1_ + h10 * h * v1_ + h01 * q_ + h11 * h * v_;
     v = h00 * v1_ + h10 * h * a1_ + h01 * v_ + h11 * h * a_;
   }
 
   double t_prev_ = 0.0;
   double tout_last_ = 0.0;
+  double h_ = 0.0;  // adaptive: the planned step
+  bool have_prev_ = false;
+  Vec eq_, ev_;
 };
 
 }  // namespace evas

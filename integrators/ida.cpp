@@ -14,6 +14,7 @@
 #include <ida/ida.h>
 #include <ida/ida_ls.h>
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
 #include <string>
@@ -59,6 +60,7 @@ class IdaIntegrator final : public Integrator {
     check(IDASetLinearSolver(mem_, ls_.solver(), ls_.matrix()), "IDASetLinearSolver");
     check(IDASetJacFn(mem_, &IdaIntegrator::jacobian_cb), "IDASetJacFn");
     if (s.max_step > 0.0) check(IDASetMaxStep(mem_, s.max_step), "IDASetMaxStep");
+    if (s.max_order > 0) check(IDASetMaxOrd(mem_, std::min(s.max_order, 5)), "IDASetMaxOrd");
     check(IDASetMaxNumSteps(mem_, s.max_steps), "IDASetMaxNumSteps");
     t_ = t0;
   }
@@ -180,7 +182,12 @@ class IdaIntegrator final : public Integrator {
     std::string msg = "ida: " + why + " at t = " + format_number(tn) + " s";
     if (!last_error_.empty()) msg += " (" + last_error_ + ")";
     const std::string cb = guard_.take_message();
-    if (!cb.empty()) msg += "; model error: " + cb;
+    if (!cb.empty())
+      msg += guard_.recoverable > 0 ? "; the model refused " + std::to_string(guard_.recoverable) +
+                                          " trial states (the solver cut the step each time), "
+                                          "last: " +
+                                          cb
+                                    : "; model error: " + cb;
     const double* y = y_.data();
     if (IDAGetDky(mem_, tn, 0, ytmp_.get()) == IDA_SUCCESS) y = ytmp_.data();
     msg += "; state: " + p_->describe_state(tn, y, y + n_);

@@ -1,11 +1,14 @@
 // Integrators behind one interface, chosen by name:
 //   ida                  IDA (variable-order BDF) on the implicit residual, KLU or dense LU
 //   cvode                CVODE on the explicit form: BDF + Newton + KLU/dense, or Adams
-//   generalized-alpha    Chung-Hulbert with Newton on the second-order form, fixed step
-//   linear-acceleration  the paper's method: Newmark beta = 1/6, gamma = 1/2, fixed step,
-//                        fixed-point iteration on the element loads until the balance
-//                        error of Eq. 1 is <= balance_tol
-// All see the model only through Problem (solver/problem.h).
+//   generalized-alpha    Chung-Hulbert on the second-order form, Newton-type iteration
+//   linear-acceleration  the paper's method: Newmark beta = 1/6, gamma = 1/2, iterated
+//                        until the balance error of Eq. 1 is <= balance_tol (by the
+//                        paper's fixed point, or Anderson, effective-mass or Newton)
+// The two Newmark-family methods step with a fixed step (cut into sub-steps where
+// the iteration fails) or adaptively against rtol/atol (settings.step_control).
+// All see the model only through Problem (solver/problem.h). Every setting is
+// declared once in integrators/settings.cpp.
 #pragma once
 
 #include <memory>
@@ -28,6 +31,17 @@ struct IntegratorSettings {
   double balance_tol = 1e-3;          ///< linear-acceleration: balance error tolerance (0.1 %)
   int max_iterations = 50;            ///< fixed-point / Newton iterations per step
   long max_steps = 10000000;          ///< adaptive methods: steps per output interval
+  int max_order = 0;                  ///< ida, cvode: largest BDF/Adams order (0 = solver's)
+  /// generalized-alpha, linear-acceleration: "default" (fixed-point for
+  /// linear-acceleration, effective-mass for generalized-alpha), "fixed-point",
+  /// "anderson", "effective-mass" or "newton"
+  std::string iteration = "default";
+  int anderson_depth = 5;  ///< anderson: number of earlier iterates mixed
+  /// generalized-alpha, linear-acceleration: "fixed" (pure fixed step, a failed
+  /// step ends the run), "substep" (fixed step; a failed step is retried as sub-steps
+  /// down to min_step) or "adaptive" (local error against rtol/atol, from `step`)
+  std::string step_control = "substep";
+  double min_step = 1e-12;  ///< smallest step the step control may take [s]
 };
 
 /// Statistics every run reports.
@@ -41,6 +55,8 @@ struct IntegratorStats {
   long error_test_failures = 0;
   long convergence_failures = 0;
   long restarts = 0;  ///< re-initializations at stops that changed the state
+  long substeps = 0;  ///< fixed-step methods: steps retried as sub-steps after a failed iteration
+  long max_step_iterations = 0;  ///< fixed-step methods: most iterations taken in one step
   double wall_seconds = 0.0;
   double last_step = 0.0;
   double min_step = 0.0, max_step = 0.0;

@@ -155,18 +155,25 @@ class NonlinearSolver {
 };
 
 /// Exceptions must not cross the C callbacks: a callback stores what it caught
-/// here and returns a failure flag; the adapter rethrows after the solver
-/// returns.
+/// here and returns a failure flag; the adapter reports it when the solver
+/// fails. A RangeError (a trial state outside an element's valid range) is
+/// recoverable (+1: IDA and CVODE cut the step and retry, counted in
+/// `recoverable`); anything else is unrecoverable (-1: the solver stops).
 struct CallbackGuard {
   std::exception_ptr error;
+  long recoverable = 0;
   template <class F>
   int run(F&& f) noexcept {
     try {
       f();
       return 0;
+    } catch (const RangeError&) {
+      error = std::current_exception();
+      ++recoverable;
+      return 1;
     } catch (...) {
       error = std::current_exception();
-      return -1;  // unrecoverable: stop the integrator
+      return -1;
     }
   }
   /// Message of the stored exception ("" if none) and clear it.

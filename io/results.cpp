@@ -7,6 +7,8 @@
 #include <limits>
 #include <sstream>
 
+#include "integrators/settings.h"
+
 namespace evas {
 
 namespace {
@@ -133,6 +135,8 @@ void ResultsWriter::finish(const IntegratorStats& st, const std::string& status)
     h5::write_attribute(g, "error_test_failures", static_cast<long long>(st.error_test_failures));
     h5::write_attribute(g, "convergence_failures", static_cast<long long>(st.convergence_failures));
     h5::write_attribute(g, "restarts", static_cast<long long>(st.restarts));
+    h5::write_attribute(g, "substeps", static_cast<long long>(st.substeps));
+    h5::write_attribute(g, "max_step_iterations", static_cast<long long>(st.max_step_iterations));
     h5::write_attribute(g, "wall_seconds", st.wall_seconds);
     h5::write_attribute(g, "last_step", st.last_step);
     h5::write_attribute(g, "min_step", st.min_step);
@@ -219,17 +223,14 @@ void write_summary_json(const std::string& path, const RunSummary& s) {
   o << "  \"scene_path\": " << json_string(s.scene_path) << ",\n";
   o << "  \"integrator\": " << json_string(s.integrator) << ",\n";
   o << "  \"settings\": {\n";
-  o << "    \"name\": " << json_string(is.name) << ",\n";
-  o << "    \"rtol\": " << json_number(is.rtol) << ",\n";
-  o << "    \"atol\": " << json_number(is.atol) << ",\n";
-  o << "    \"step\": " << json_number(is.step) << ",\n";
-  o << "    \"max_step\": " << json_number(is.max_step) << ",\n";
-  o << "    \"linear_solver\": " << json_string(is.linear_solver) << ",\n";
-  o << "    \"method\": " << json_string(is.method) << ",\n";
-  o << "    \"rho_inf\": " << json_number(is.rho_inf) << ",\n";
-  o << "    \"balance_tol\": " << json_number(is.balance_tol) << ",\n";
-  o << "    \"max_iterations\": " << is.max_iterations << ",\n";
-  o << "    \"max_steps\": " << is.max_steps << "\n";
+  const auto& table = integrator_settings();
+  for (std::size_t k = 0; k < table.size(); ++k) {
+    const SettingInfo& info = table[k];
+    const std::string v = get_integrator_setting(is, info.key);
+    const bool text = info.kind == "choice";
+    o << "    " << json_string(info.key) << ": " << (text ? json_string(v) : v)
+      << (k + 1 < table.size() ? ",\n" : "\n");
+  }
   o << "  },\n";
   o << "  \"grid\": " << json_string(s.grid) << ",\n";
   o << "  \"status\": " << json_string(s.status) << ",\n";
@@ -247,6 +248,8 @@ void write_summary_json(const std::string& path, const RunSummary& s) {
   o << "    \"error_test_failures\": " << st.error_test_failures << ",\n";
   o << "    \"convergence_failures\": " << st.convergence_failures << ",\n";
   o << "    \"restarts\": " << st.restarts << ",\n";
+  o << "    \"substeps\": " << st.substeps << ",\n";
+  o << "    \"max_step_iterations\": " << st.max_step_iterations << ",\n";
   o << "    \"wall_seconds\": " << json_number(st.wall_seconds) << ",\n";
   o << "    \"last_step\": " << json_number(st.last_step) << ",\n";
   o << "    \"min_step\": " << json_number(st.min_step) << ",\n";

@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "elements/registry.h"
+#include "integrators/settings.h"
 #include "io/body_file.h"
 #include "solver/body_builder.h"
 #include "solver/truss.h"
@@ -590,25 +591,23 @@ void SceneReader::read_element(const Node& e, std::size_t i, Model& model) {
 
 IntegratorSettings SceneReader::read_integrator(const Node& n) const {
   const std::string item = "integrator";
-  check_keys(n, item,
-             {"name", "rtol", "atol", "step", "linear_solver", "method", "rho_inf", "balance_tol",
-              "max_iterations", "max_step", "max_steps"});
+  std::vector<std::string> keys;
+  for (const auto& info : integrator_settings()) keys.push_back(info.key);
+  check_keys(n, item, keys);
   IntegratorSettings s;
-  const double inf = 1e300;
+  // the name first, so that every other key is checked against the same table
   if (n["name"]) s.name = choice(n["name"], item, "name", integrator_names());
-  if (n["rtol"]) s.rtol = number_in(n["rtol"], item, "rtol", 0.0, 1.0, true);
-  if (n["atol"]) s.atol = number_in(n["atol"], item, "atol", 0.0, inf, true);
-  if (n["step"]) s.step = number_in(n["step"], item, "step", 0.0, inf, true);
-  if (n["max_step"]) s.max_step = number_in(n["max_step"], item, "max_step", 0.0, inf);
-  if (n["linear_solver"])
-    s.linear_solver = choice(n["linear_solver"], item, "linear_solver", {"klu", "dense"});
-  if (n["method"]) s.method = choice(n["method"], item, "method", {"bdf", "adams"});
-  if (n["rho_inf"]) s.rho_inf = number_in(n["rho_inf"], item, "rho_inf", 0.0, 1.0);
-  if (n["balance_tol"])
-    s.balance_tol = number_in(n["balance_tol"], item, "balance_tol", 0.0, inf, true);
-  if (n["max_iterations"])
-    s.max_iterations = static_cast<int>(integer(n["max_iterations"], item, "max_iterations", 1));
-  if (n["max_steps"]) s.max_steps = integer(n["max_steps"], item, "max_steps", 1);
+  for (auto it = n.begin(); it != n.end(); ++it) {
+    const std::string key = it->first.as<std::string>();
+    if (key == "name") continue;
+    const Node v = it->second;
+    if (!v.IsScalar()) fail(v, item, "'" + key + "' must be a single value" + got(v));
+    try {
+      set_integrator_setting(s, key, v.Scalar());
+    } catch (const InputError& e) {
+      fail(v, item, e.what());
+    }
+  }
   return s;
 }
 

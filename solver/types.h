@@ -42,4 +42,14 @@ class RunError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+/// A state outside the range in which an element's law holds (a film that
+/// closes, a journal turned off its bearing axis, pulleys without a common
+/// tangent). Newton trial iterates and too-long steps reach such states; the
+/// integrators treat it as a failed step and retry with a smaller one (SUNDIALS:
+/// a recoverable error), and report it when they cannot get past it.
+class RangeError : public RunError {
+ public:
+  using RunError::RunError;
+};
+
 }  // namespace evas

@@ -1,0 +1,283 @@
+// The Newmark family and its iterations (newmark.h).
+#include "integrators/newmark.h"
+
+#include <Eigen/QR>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace evas {
+
+namespace {
+
+const char* iteration_name(int k) {
+  static const char* names[] = {"fixed-point", "anderson", "effective-mass", "newton"};
+  return names[k];
+}
+
+}  // namespace
+
+void NewmarkIntegrator::setup() {
+  par_ = parameters();
+  const std::string it = s_.iteration == "default" ? par_.iteration : s_.iteration;
+  if (it == "fixed-point")
+    it_ = Iteration::FixedPoint;
+  else if (it == "anderson")
+    it_ = Iteration::Anderson;
+  else if (it == "effective-mass")
+    it_ = Iteration::EffectiveMass;
+  else if (it == "newton")
+    it_ = Iteration::Newton;
+  else
+    throw InputError(name() + ": iteration '" + it +
+                     "' is unknown (fixed-point, anderson, effective-mass, newton)");
+  if (it_ == Iteration::Anderson && s_.anderson_depth < 1)
+    throw InputError(name() + ": anderson_depth must be >= 1");
+
+  K_ = p_->jacobian_pattern();
+  K_.makeCompressed();
+  C_ = K_;
+  std::vector<Triplet> trip;
+  for (int c = 0; c < n_; ++c) {
+    trip.emplace_back(c, c, 0.0);
+    for (SpMat::InnerIterator it2(K_, c); it2; ++it2) trip.emplace_back(it2.row(), c, 0.0);
+  }
+  S_.resize(n_, n_);
+  S_.setFromTriplets(trip.begin(), trip.end());
+  S_.makeCompressed();
+  auto position = [&](int row, int col) {
+    for (int k = S_.outerIndexPtr()[col]; k < S_.outerIndexPtr()[col + 1]; ++k)
+      if (S_.innerIndexPtr()[k] == row) return k;
+    throw std::logic_error(name() + ": entry missing from the iteration pattern");
+  };
+  pos_kc_.resize(static_cast<std::size_t>(K_.nonZeros()));
+  for (int c = 0; c < n_; ++c)
+    for (int k = K_.outerIndexPtr()[c]; k < K_.outerIndexPtr()[c + 1]; ++k)
+      pos_kc_[static_cast<std::size_t>(k)] = position(K_.innerIndexPtr()[k], c);
+  pos_diag_.resize(static_cast<std::size_t>(n_));
+  for (int i = 0; i < n_; ++i) pos_diag_[static_cast<std::size_t>(i)] = position(i, i);
+  klu_ = std::make_unique<Eigen::KLU<SpMat>>();
+  klu_->analyzePattern(S_);
+  if (klu_->info() != Eigen::Success)
+    throw RunError(name() + ": KLU symbolic analysis of the iteration matrix failed");
+  factored_ = false;
+  have_jacobian_ = false;
+  body_ = false;
+  h_factor_ = 0.0;
+  kb_last_ = Vec::Zero(K_.nonZeros());
+  cb_last_ = Vec::Zero(C_.nonZeros());
+  R_.resize(n_);
+  delta_.resize(n_);
+  if (it_ == Iteration::Anderson) {
+    dG_.resize(n_, s_.anderson_depth);
+    dF_.resize(n_, s_.anderson_depth);
+  }
+}
+
+void NewmarkIntegrator::kinematics(double h, const Vec& a) {
+  q1_ = q_ + h * v_ + (h * h) * ((0.5 - par_.beta) * a_ + par_.beta * a);
+  v1_ = v_ + h * ((1.0 - par_.gamma) * a_ + par_.gamma * a);
+}
+
+void NewmarkIntegrator::factorize(const SpMat& K, const SpMat& C, double h) {
+  double* s = S_.valuePtr();
+  std::fill(s, s + S_.nonZeros(), 0.0);
+  const double ck = (1.0 - par_.alpha_f) * par_.beta * h * h;
+  const double cc = (1.0 - par_.alpha_f) * par_.gamma * h;
+  const double* kv = K.valuePtr();
+  const double* cv = C.valuePtr();
+  for (std::size_t e = 0; e < pos_kc_.size(); ++e) s[pos_kc_[e]] += ck * kv[e] + cc * cv[e];
+  for (int pos : pos_diag_) s[pos] += 1.0 - par_.alpha_m;
+  klu_->factorize(S_);
+  ++stats_.linear_setups;
+  h_factor_ = h;
+  factored_ = klu_->info() == Eigen::Success;
+  if (!factored_)
+    throw RunError(name() + ": the iteration matrix is singular" + where(t_ + h, h, q1_, v1_));
+}
+
+bool NewmarkIntegrator::step(double t, double h) {
+  const double t1 = t + h;
+  const double am = par_.alpha_m, af = par_.alpha_f;
+  const bool fixed_point = it_ == Iteration::FixedPoint || it_ == Iteration::Anderson;
+  if (fixed_point) {
+    p_->body_operator(t1, K_, C_);
+    ++stats_.jacobian_evals;
+    Eigen::Map<const Vec> kb(K_.valuePtr(), K_.nonZeros());
+    Eigen::Map<const Vec> cb(C_.valuePtr(), C_.nonZeros());
+    body_ = kb.lpNorm<Eigen::Infinity>() > 0.0 || cb.lpNorm<Eigen::Infinity>() > 0.0;
+    if (body_ && (!factored_ || h != h_factor_ || kb != kb_last_ || cb != cb_last_)) {
+      factorize(K_, C_, h);
+      kb_last_ = kb;
+      cb_last_ = cb;
+    }
+  }
+  const double tol_scale = s_.step_control == "adaptive" ? 0.1 : 1.0;
+  Vec& a = a1_;
+  a = a_;  // predictor
+  rnorms_.clear();
+  bool fresh = false;  // effective-mass: matrix evaluated during this step
+  bool refresh = it_ == Iteration::EffectiveMass && !have_jacobian_;
+  double prev = std::numeric_limits<double>::infinity();
+  for (int k = 0;; ++k) {
+    kinematics(h, a);
+    try {
+      p_->force(t1, q1_.data(), v1_.data(), f1_.data());
+    } catch (const RangeError& e) {
+      if (k == 0) throw;  // the predictor itself: the element's own message
+      return fail(std::string("iteration ") + std::to_string(k) +
+                      " reached a state the model refuses (" + e.what() + ")",
+                  t1, h, k);
+    }
+    ++stats_.residual_evals;
+    R_ = (1.0 - am) * a + am * a_ + (1.0 - af) * f1_ + af * f_;
+    const double rn = R_.norm();
+    rnorms_.push_back(rn);
+    if (!std::isfinite(rn)) return fail("the residual is not finite", t1, h, k);
+    if (par_.balance) {
+      const double inertia = am == 0.0 ? a.norm() : ((1.0 - am) * a + am * a_).norm();
+      const double eps = rn / std::max(inertia, s_.atol);
+      if (eps <= s_.balance_tol) {
+        stats_.max_step_iterations = std::max<long>(stats_.max_step_iterations, k);
+        return true;  // balanced: (q1_, v1_, a1_, f1_) consistent
+      }
+      if (k >= s_.max_iterations)
+        return fail("balance error " + format_number(eps) + " > balance_tol " +
+                        format_number(s_.balance_tol),
+                    t1, h, k);
+      if (it_ == Iteration::EffectiveMass && k > 0 && rn > 0.5 * rnorms_[k - 1] && !fresh)
+        refresh = true;
+    } else if (k >= s_.max_iterations) {
+      return fail("the iteration did not converge (last |delta a|_inf = " +
+                      format_number(delta_.lpNorm<Eigen::Infinity>()) + ")",
+                  t1, h, k);
+    }
+
+    switch (it_) {
+      case Iteration::Newton:
+        p_->force_jacobian(t1, q1_.data(), v1_.data(), K_, C_);
+        ++stats_.jacobian_evals;
+        factorize(K_, C_, h);
+        delta_ = klu_->solve(R_);
+        ++stats_.linear_solves;
+        break;
+      case Iteration::EffectiveMass:
+        if (refresh) {
+          p_->force_jacobian(t1, q1_.data(), v1_.data(), K_, C_);
+          ++stats_.jacobian_evals;
+          have_jacobian_ = true;
+          fresh = true;
+          refresh = false;
+          factorize(K_, C_, h);
+        } else if (!factored_ || std::abs(h / h_factor_ - 1.0) > 0.2) {
+          factorize(K_, C_, h);
+        }
+        delta_ = klu_->solve(R_);
+        ++stats_.linear_solves;
+        break;
+      case Iteration::FixedPoint:
+      case Iteration::Anderson:
+        if (body_) {
+          delta_ = klu_->solve(R_);
+          ++stats_.linear_solves;
+        } else {
+          delta_ = R_ / (1.0 - am);
+        }
+        break;
+    }
+    ++stats_.nonlinear_iterations;
+    if (it_ == Iteration::Anderson)
+      anderson_update(a, k);
+    else
+      a -= delta_;
+
+    if (!par_.balance) {
+      const double dn = delta_.lpNorm<Eigen::Infinity>();
+      if (!std::isfinite(dn)) return fail("the update is not finite", t1, h, k + 1);
+      if (dn <= tol_scale * (s_.rtol * a.lpNorm<Eigen::Infinity>() + s_.atol)) {
+        kinematics(h, a);
+        f1_ = -((1.0 - am) * a + am * a_ + af * f_) / (1.0 - af);
+        stats_.max_step_iterations = std::max<long>(stats_.max_step_iterations, k + 1);
+        return true;
+      }
+      if (it_ == Iteration::EffectiveMass && dn > 0.5 * prev && !fresh) refresh = true;
+      prev = dn;
+    }
+  }
+}
+
+// Anderson mixing (type II, Walker & Ni 2011) of the map G(a) = a - delta with
+// residual F(a) = G(a) - a = -delta: a_{k+1} = G(a_k) - dG gamma, gamma the
+// least-squares solution of dF gamma = F(a_k) over the last m differences.
+void NewmarkIntegrator::anderson_update(Vec& a, int k) {
+  const int m = static_cast<int>(dG_.cols());
+  Vec g = a - delta_;
+  Vec fres = -delta_;
+  if (k > 0) {
+    const int col = (k - 1) % m;
+    dG_.col(col) = g - g_last_;
+    dF_.col(col) = fres - fres_last_;
+  }
+  g_last_ = g;
+  fres_last_ = fres;
+  const int cols = std::min(k, m);
+  if (cols == 0) {
+    a = g;
+    return;
+  }
+  const Vec gamma = dF_.leftCols(cols).colPivHouseholderQr().solve(fres);
+  if (gamma.allFinite())
+    a = g - dG_.leftCols(cols) * gamma;
+  else
+    a = g;
+}
+
+std::string NewmarkIntegrator::contraction_advice(double h) const {
+  const std::size_t n = rnorms_.size();
+  if (n < 3) return "";
+  const std::size_t j = std::min<std::size_t>(5, n - 1);
+  const double rho = std::pow(rnorms_[n - 1] / rnorms_[n - 1 - j], 1.0 / static_cast<double>(j));
+  std::string s = "; the residual ";
+  if (!(rho < 1.0))
+    s += "grows by a factor " + format_number(rho) + " per iteration (the iteration diverges)";
+  else
+    s += "contracts by only " + format_number(rho) + " per iteration";
+  if (it_ == Iteration::FixedPoint || it_ == Iteration::Anderson) {
+    // the rate scales like h for the elements' damping and h^2 for their
+    // stiffness: h * 0.5 / rho gives rate <= 0.5 in either case
+    const double h_ok = h * std::min(0.5, 0.5 / std::max(rho, 1e-300));
+    s += "; a step of about " + format_number(h_ok) +
+         " s would converge (the contraction rate falls like h or h^2), or use "
+         "iteration=effective-mass or newton, which put the elements' stiffness and damping "
+         "into the effective mass";
+  }
+  return s;
+}
+
+bool NewmarkIntegrator::fail(const std::string& why, double t1, double h, int iterations) {
+  failure_ = name() + " (iteration " + iteration_name(static_cast<int>(it_)) + "): " + why +
+             " after " + std::to_string(iterations) + " iterations" + contraction_advice(h) +
+             where(t1, h, q1_, v1_);
+  return false;
+}
+
+void NewmarkIntegrator::local_error(double h, bool hist, Vec& eq, Vec& ev) const {
+  const double cq = par_.beta - 1.0 / 6.0 + 0.5 * (par_.alpha_m - par_.alpha_f);
+  if (std::abs(cq) > 1e-12) {
+    eq = (cq * h * h) * (a1_ - a_);
+    ev.setZero();
+    return;
+  }
+  // linear acceleration: fourth derivative from three accelerations
+  if (!hist) {
+    eq.setZero();
+    ev = (h * h / 12.0) * (a1_ - a_);
+    return;
+  }
+  const double hp = h_prev_;
+  ev = ((a1_ - a_) / h - (a_ - a_prev_) / hp) * (2.0 / (h + hp));  // q''''
+  eq = (h * h * h * h / 24.0) * ev;
+  ev *= h * h * h / 12.0;
+}
+
+}  // namespace evas

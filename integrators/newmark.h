@@ -1,0 +1,98 @@
+// Private: the Newmark family on the second-order form qdd + f(t, q, v) = 0,
+// shared by generalized-alpha and linear-acceleration (not a public header).
+//
+// One step from (q_n, v_n, a_n, f_n) to t_{n+1} = t_n + h, unknown a = a_{n+1}:
+//     q_{n+1} = q_n + h v_n + h^2 ((1/2 - beta) a_n + beta a)
+//     v_{n+1} = v_n + h ((1 - gamma) a_n + gamma a)
+//     R(a) = (1 - alpha_m) a + alpha_m a_n + (1 - alpha_f) f(t_{n+1}, q_{n+1}, v_{n+1})
+//            + alpha_f f_n = 0.
+// Linear acceleration is alpha_m = alpha_f = 0, beta = 1/6, gamma = 1/2 (R = a + f:
+// the balance of Eq. 1 of the paper); generalized-alpha takes its four
+// parameters from rho_inf (Chung & Hulbert 1993).
+//
+// Iterations (settings.iteration), all on the same R(a) = 0, with the
+// iteration matrix S(K, C) = (1 - alpha_m) I + (1 - alpha_f)(beta h^2 K + gamma h C):
+//   fixed-point     the paper's Steps <4>-<6>: a <- a - S(KB, CB)^-1 R(a), where KB,
+//                   CB are only the bodies' own modal terms (Problem::body_operator):
+//                   the body responds to the forces exactly, the element loads are
+//                   recomputed and iterated. Converges when the elements' stiffness
+//                   and damping are small for the step (contraction rate
+//                   ~ ||S^-1 (1 - alpha_f)(beta h^2 K_e + gamma h C_e)|| < 1).
+//   anderson        the same fixed-point map G(a) = a - S(KB, CB)^-1 R(a),
+//                   accelerated by Anderson mixing of the last `anderson_depth`
+//                   iterates (Walker & Ni, SIAM J. Numer. Anal. 49 (2011) 1715).
+//   effective-mass  the fixed point with the elements' stiffness and damping in
+//                   the effective mass: S(K, C) with K, C = df/dq, df/dv
+//                   (Problem::force_jacobian), kept across iterations and steps
+//                   (modified Newton), refreshed when an iteration contracts by
+//                   less than a factor 2 with a matrix from an earlier step, and
+//                   refactorized when h changes by more than 20 %.
+//   newton          full Newton: K, C and S at every iterate.
+// Convergence:
+//   balance (linear-acceleration): eps = ||R||_2 / max(||(1 - alpha_m) a + alpha_m a_n||_2,
+//     atol) <= balance_tol, checked on the iterate before an update, so the
+//     accepted state is exactly balanced to that tolerance (the paper's 0.1 %);
+//   increment (generalized-alpha): ||delta a||_inf <= tol (rtol ||a||_inf + atol),
+//     tol = 1 (0.1 with adaptive steps), after the update; f_{n+1} is then taken
+//     from R = 0 itself, so the discrete equations hold exactly.
+//
+// Local error estimates (for step_control = adaptive), from Taylor expansion of
+// the step about t_n with a_n ~ qdd(t_n) + (alpha_m - alpha_f) h qddd:
+//   generalized-alpha:   e_q = (beta - 1/6 + (alpha_m - alpha_f)/2) h^2 (a_{n+1} - a_n)
+//     (the Zienkiewicz-Xie estimate, Earthq. Eng. Struct. Dyn. 20 (1991) 871, for
+//     alpha_m = alpha_f = 0), e_v = 0;
+//   linear acceleration: the h^3 term vanishes (beta = 1/6); e_v = h^3/12 q'''' and
+//     e_q = h^4/24 q'''', with q'''' from the divided difference of a_{n-1}, a_n,
+//     a_{n+1} (first step: e_v = h^2/12 (a_{n+1} - a_n), an over-estimate).
+#pragma once
+
+#include <Eigen/KLUSupport>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "integrators/fixed_step.h"
+
+namespace evas {
+
+class NewmarkIntegrator : public FixedStepIntegrator {
+ public:
+  struct Parameters {
+    double alpha_m = 0.0, alpha_f = 0.0, beta = 1.0 / 6.0, gamma = 0.5;
+    bool balance = true;                    ///< balance (true) or increment convergence
+    std::string iteration = "fixed-point";  ///< what "default" means
+  };
+
+ protected:
+  /// The method's parameters from the settings (s_); throws InputError.
+  virtual Parameters parameters() const = 0;
+
+  void setup() override;
+  bool step(double t, double h) override;
+  void local_error(double h, bool hist, Vec& eq, Vec& ev) const override;
+
+ private:
+  enum class Iteration { FixedPoint, Anderson, EffectiveMass, Newton };
+  void kinematics(double h, const Vec& a);
+  // S = (1 - am) I + (1 - af)(beta h^2 K + gamma h C) into S_, factorized
+  void factorize(const SpMat& K, const SpMat& C, double h);
+  bool fail(const std::string& why, double t1, double h, int iterations);
+  std::string contraction_advice(double h) const;
+  void anderson_update(Vec& a, int k);
+
+  Parameters par_;
+  Iteration it_ = Iteration::FixedPoint;
+  SpMat K_, C_, S_;
+  Vec kb_last_, cb_last_;  // body operator of the last factorization (fixed point)
+  std::vector<int> pos_kc_, pos_diag_;
+  std::unique_ptr<Eigen::KLU<SpMat>> klu_;
+  bool factored_ = false, have_jacobian_ = false, body_ = false;
+  double h_factor_ = 0.0;
+  Vec R_, delta_;
+  std::vector<double> rnorms_;  // ||R|| per iteration of the current step
+  // Anderson: differences of the fixed-point map values and residuals
+  Mat dG_, dF_;
+  Vec g_last_, fres_last_;
+};
+
+}  // namespace evas

@@ -1,0 +1,43 @@
+// Every integrator setting, declared once: its key, kind, range, default and
+// meaning. The scene reader (`integrator:` block), the command line
+// (`--set KEY=VALUE`), the studies (`--case "NAME KEY=V1,V2 ..."`), the run
+// summary and `evas run --help-settings` all read this one table, so a setting
+// added here is available everywhere with the same name and checks.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "integrators/integrator.h"
+
+namespace evas {
+
+struct SettingInfo {
+  std::string key;
+  std::string kind;     ///< "number", "integer", "choice" or "bool"
+  std::string applies;  ///< integrators it acts on ("all" or a list)
+  std::string doc;      ///< one line: meaning, unit, range
+};
+
+/// The table, in documentation order.
+const std::vector<SettingInfo>& integrator_settings();
+
+/// Sets `key` from its text form, checking kind and range. Throws InputError
+/// "<key>: <what is wrong>" (callers prefix file, line or option).
+void set_integrator_setting(IntegratorSettings& s, const std::string& key,
+                            const std::string& value);
+
+/// The text form of a setting (numbers with enough digits to round-trip).
+std::string get_integrator_setting(const IntegratorSettings& s, const std::string& key);
+
+/// Applies "KEY=VALUE" (as given to --set). Throws InputError naming the option.
+void apply_setting_assignment(IntegratorSettings& s, const std::string& assignment);
+
+/// "name key=value ..." of the settings that differ from a default-constructed
+/// IntegratorSettings with the same name (a compact label for tables).
+std::string settings_label(const IntegratorSettings& s);
+
+/// Markdown table of every setting (for --help-settings and the user guide).
+std::string settings_reference();
+
+}  // namespace evas

@@ -1,0 +1,238 @@
+// Iterations and step control of the Newmark-family integrators, and the
+// recoverable model errors of every integrator, on uncoupled oscillators with a
+// closed-form solution (tests/sdof_problem.h: damped harmonic oscillator, free
+// plus steady-state harmonic response, e.g. S. S. Rao, Mechanical Vibrations).
+//   - the four iterations of linear-acceleration solve the same discrete
+//     equations: same answer, second order (Newmark 1959, beta = 1/6);
+//   - a step whose fixed point diverges is retried as sub-steps;
+//   - adaptive steps meet the tolerance and their error falls with it;
+//   - a RangeError from the model (a trial state outside an element's range) is
+//     recoverable: every integrator cuts the step and goes on; any other error
+//     still ends the run.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include "integrators/integrator.h"
+#include "sdof_problem.h"
+
+namespace evas {
+namespace {
+
+using test::Oscillator;
+using test::SdofProblem;
+
+constexpr double kPi = 3.14159265358979323846;
+
+std::vector<Oscillator> oscillators() {
+  Oscillator a;
+  a.omega = 2 * kPi * 1.0;
+  a.zeta = 0.05;
+  a.q0 = 1.0;
+  Oscillator b;
+  b.omega = 2 * kPi * 3.0;
+  b.zeta = 0.2;
+  b.force = 10.0;
+  b.force_freq = 2 * kPi * 1.7;
+  b.v0 = 0.5;
+  return {a, b};
+}
+
+struct RunResult {
+  double err = 0.0;  // max over outputs of |q - q_exact|_inf
+  Vec q_end;
+  IntegratorStats stats;
+};
+
+RunResult run(const IntegratorSettings& s, Problem& p, const SdofProblem& exact, double t_end,
+              int outputs = 10) {
+  auto integ = make_integrator(s.name);
+  Vec q0, v0;
+  p.initial_state(q0, v0);
+  integ->init(p, 0.0, q0, v0, s);
+  std::vector<double> times;
+  for (int k = 1; k <= outputs; ++k) times.push_back(t_end * k / outputs);
+  RunResult r;
+  integrate(*integ, p, 0.0, times, [&](double t, const Vec& q, const Vec&) {
+    Vec qe, ve;
+    exact.exact(t, qe, ve);
+    r.err = std::max(r.err, (q - qe).lpNorm<Eigen::Infinity>());
+    r.q_end = q;
+  });
+  r.stats = integ->stats();
+  return r;
+}
+
+IntegratorSettings la(const std::string& iteration, double h) {
+  IntegratorSettings s;
+  s.name = "linear-acceleration";
+  s.iteration = iteration;
+  s.step = h;
+  s.balance_tol = 1e-12;  // far below the truncation error
+  s.max_iterations = 200;
+  return s;
+}
+
+TEST(Iterations, LinearAccelerationVariantsSolveTheSameEquations) {
+  // Everything is an element load (body_part = false): the paper's fixed point
+  // iterates on all of it; h w = 0.19 for the 3 Hz oscillator, so it converges.
+  Vec q_ref;
+  long fp_iterations = 0;
+  for (const char* it : {"fixed-point", "anderson", "effective-mass", "newton"}) {
+    double e[2];
+    RunResult r;
+    for (int k = 0; k < 2; ++k) {
+      SdofProblem p(oscillators(), false);
+      r = run(la(it, 0.01 / (1 << k)), p, p, 1.0);
+      e[k] = r.err;
+      if (k == 0 && q_ref.size() == 0) q_ref = r.q_end;
+      if (k == 0) {
+        EXPECT_LT((r.q_end - q_ref).lpNorm<Eigen::Infinity>(), 1e-10) << it;
+      }
+    }
+    const double order = std::log2(e[0] / e[1]);
+    std::cout << it << ": errors " << e[0] << ", " << e[1] << ", order " << order
+              << "; iterations per step " << double(r.stats.nonlinear_iterations) / r.stats.steps
+              << "\n";
+    EXPECT_NEAR(order, 2.0, 0.1) << it;
+    if (std::string(it) == "fixed-point") fp_iterations = r.stats.nonlinear_iterations;
+    if (std::string(it) == "anderson") {
+      EXPECT_LT(r.stats.nonlinear_iterations, fp_iterations);
+    }
+  }
+}
+
+TEST(StepControl, SubstepsRescueADivergingFixedPoint) {
+  // h w = 3.8 for the 3 Hz oscillator: the fixed point a <- -f(q(a), v(a))
+  // diverges (contraction ~ (h w)^2 / 6 > 1); half steps (h w = 1.9) converge, so
+  // every interval is covered by two sub-steps and the result equals a run at h/2.
+  Oscillator o;
+  o.omega = 2 * kPi * 3.0;
+  o.zeta = 0.02;
+  o.q0 = 1.0;
+  IntegratorSettings s = la("fixed-point", 0.2);
+  s.balance_tol = 1e-10;
+  SdofProblem p({o}, false);
+  const RunResult sub = run(s, p, p, 1.0, 5);
+  s.step_control = "fixed";
+  s.step = 0.1;
+  SdofProblem p2({o}, false);
+  const RunResult half = run(s, p2, p2, 1.0, 5);
+  std::cout << "substeps " << sub.stats.substeps << ", failed attempts "
+            << sub.stats.convergence_failures << ", |q - q(h/2)| "
+            << (sub.q_end - half.q_end).lpNorm<Eigen::Infinity>() << "\n";
+  EXPECT_EQ(sub.stats.substeps, 10);
+  EXPECT_EQ(sub.stats.convergence_failures, 5);
+  EXPECT_LT((sub.q_end - half.q_end).lpNorm<Eigen::Infinity>(), 1e-12);
+}
+
+TEST(StepControl, SubstepFailsBelowMinStepWithTheReason) {
+  IntegratorSettings s = la("fixed-point", 0.2);
+  s.max_iterations = 1;  // never balances: every sub-step fails too
+  s.min_step = 1e-3;
+  SdofProblem p(oscillators(), false);
+  try {
+    run(s, p, p, 1.0);
+    FAIL() << "expected RunError";
+  } catch (const RunError& e) {
+    const std::string msg = e.what();
+    std::cout << msg.substr(0, 300) << "\n";
+    EXPECT_NE(msg.find("below min_step"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("balance error"), std::string::npos) << msg;
+  }
+}
+
+TEST(StepControl, AdaptiveStepsFollowTheTolerance) {
+  // Local error O(h^3) controlled per step: the global error falls like
+  // tol^(2/3) for a second-order method (Hairer, Norsett & Wanner, Solving ODEs I,
+  // s. II.4); accepted over [0.4, 1.1] for the measured slope.
+  for (const char* name : {"generalized-alpha", "linear-acceleration"}) {
+    double e[2];
+    IntegratorStats st[2];
+    for (int k = 0; k < 2; ++k) {
+      IntegratorSettings s;
+      s.name = name;
+      s.step_control = "adaptive";
+      s.iteration = "effective-mass";
+      s.step = 1e-3;
+      s.rtol = k == 0 ? 1e-4 : 1e-6;
+      s.atol = 1e-2 * s.rtol;
+      s.balance_tol = 1e-10;
+      SdofProblem p(oscillators(), true);
+      const RunResult r = run(s, p, p, 2.0, 40);
+      e[k] = r.err;
+      st[k] = r.stats;
+    }
+    const double slope = std::log10(e[0] / e[1]) / 2.0;
+    std::cout << name << ": error " << e[0] << " (rtol 1e-4, " << st[0].steps << " steps, "
+              << st[0].error_test_failures << " rejected, h " << st[0].min_step << " .. "
+              << st[0].max_step << "), " << e[1] << " (rtol 1e-6, " << st[1].steps
+              << " steps); slope " << slope << "\n";
+    EXPECT_GT(slope, 0.4) << name;
+    EXPECT_LT(slope, 1.1) << name;
+    EXPECT_LT(e[0], 1e-1) << name;  // amplitude ~1: a few hundred rtol at most
+    EXPECT_LT(e[1], 1e-3) << name;
+    EXPECT_GT(st[1].steps, st[0].steps) << name;
+    EXPECT_LT(st[0].min_step, st[0].max_step) << name;  // the step did vary
+  }
+}
+
+// A model that refuses the first trial state past t_trap (as a film that
+// closes on a Newton iterate), with a RangeError or, `fatal`, a plain RunError.
+class Refusing : public SdofProblem {
+ public:
+  Refusing(double t_trap, bool fatal)
+      : SdofProblem(oscillators(), true), t_trap_(t_trap), fatal_(fatal) {}
+  void force(double t, const double* q, const double* v, double* f) override {
+    if (t > t_trap_ && !refused) {
+      refused = true;
+      if (fatal_) throw RunError("element 'film': broken");
+      throw RangeError("element 'film': film closed on a trial state");
+    }
+    SdofProblem::force(t, q, v, f);
+  }
+  bool refused = false;
+
+ private:
+  double t_trap_;
+  bool fatal_;
+};
+
+TEST(RecoverableErrors, EveryIntegratorCutsTheStepAndGoesOn) {
+  for (const char* name : {"ida", "cvode", "generalized-alpha", "linear-acceleration"}) {
+    IntegratorSettings s;
+    s.name = name;
+    s.rtol = 1e-8;
+    s.atol = 1e-10;
+    s.step = 1e-3;
+    s.iteration = "effective-mass";
+    s.balance_tol = 1e-10;
+    Refusing p(0.3, false);
+    const RunResult r = run(s, p, p, 1.0);
+    std::cout << name << ": refused once, error " << r.err << ", substeps " << r.stats.substeps
+              << "\n";
+    EXPECT_TRUE(p.refused) << name;
+    EXPECT_LT(r.err, 1e-4) << name;
+  }
+}
+
+TEST(RecoverableErrors, OtherErrorsStillEndTheRun) {
+  for (const char* name : {"ida", "cvode"}) {
+    IntegratorSettings s;
+    s.name = name;
+    Refusing p(0.3, true);
+    try {
+      run(s, p, p, 1.0);
+      FAIL() << name << ": expected RunError";
+    } catch (const RunError& e) {
+      const std::string msg = e.what();
+      EXPECT_NE(msg.find("model error: element 'film': broken"), std::string::npos) << msg;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace evas
