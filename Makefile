@@ -49,6 +49,11 @@ docs: build
 	{ sed '/<!-- BEGIN GENERATED: evas elements -->/q' docs/elements.md; \
 	  ./$(BUILD)/evas elements | sed '1{/^# /d;}' | sed '1{/^$$/d;}'; \
 	  echo '<!-- END GENERATED -->'; } > docs/elements.md.new && mv docs/elements.md.new docs/elements.md
+	{ sed '/<!-- BEGIN GENERATED: evas run --help-settings -->/q' docs/user-guide.md; \
+	  ./$(BUILD)/evas run --help-settings; \
+	  sed -n '/<!-- BEGIN GENERATED: evas run --help-settings -->/,$$p' docs/user-guide.md | \
+	    sed -n '/<!-- END GENERATED -->/,$$p'; } > docs/user-guide.md.new && \
+	  mv docs/user-guide.md.new docs/user-guide.md
 
 # Regenerate the validation engine's modal bodies kept in validation/bodies/
 # (gmsh -> ccx -> evas, reduced to the node sets; docs/engine-bodies.md).

@@ -145,6 +145,17 @@ bool NewmarkIntegrator::step(double t, double h) {
         return fail("balance error " + format_number(eps) + " > balance_tol " +
                         format_number(s_.balance_tol),
                     t1, h, k);
+      // the paper's fixed point contracts linearly: once the rate is known, give up
+      // on a step that cannot balance within max_iterations (sub-steps are cheaper)
+      if (it_ == Iteration::FixedPoint && k >= 4) {
+        const double rho = std::cbrt(rn / rnorms_[static_cast<std::size_t>(k - 3)]);
+        const double needed = rho < 1.0 ? std::log(eps / s_.balance_tol) / -std::log(rho) : 1e300;
+        if (k + needed > 1.5 * s_.max_iterations)
+          return fail("balance error " + format_number(eps) + " > balance_tol " +
+                          format_number(s_.balance_tol) + " and would not fall below it within " +
+                          "max_iterations = " + std::to_string(s_.max_iterations),
+                      t1, h, k);
+      }
       if (it_ == Iteration::EffectiveMass && k > 0 && rn > 0.5 * rnorms_[k - 1] && !fresh)
         refresh = true;
     } else if (k >= s_.max_iterations) {
