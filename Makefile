@@ -22,8 +22,9 @@ build: deps
 
 demo: build
 	./scripts/demo.sh $(BUILD) $(DEMO_OUT)
-	./$(BUILD)/validation/evas_work_precision scenes/demo.yaml $(DEMO_OUT) 0.05 > /dev/null
-	@echo "work-precision diagram of the demo scene: $(DEMO_OUT)/work_precision.png"
+	./$(BUILD)/evas study work-precision scenes/demo.yaml --t-end 0.05 --repeats 2 \
+	  --out $(DEMO_OUT)/study --quiet
+	@echo "work-precision diagram of the demo scene: $(DEMO_OUT)/study/study.png"
 	./validation/engine/run.sh $(BUILD) $(DEMO_OUT)/validation
 
 # The paper's validation: Case 1 (soft mounts) vs Case 2 (rigid ground), main-bearing
@@ -39,10 +40,13 @@ bench: build
 	cmake --build $(BUILD) -j$(JOBS) --target evas_bench
 	./$(BUILD)/validation/evas_bench docs/performance.md
 
-# Work-precision table and figure of the demo scene, kept in docs/.
+# Work-precision of every integrator on the paper's engine, Case 1 and Case 2
+# (about 20 minutes), kept in docs/work-precision/ (tables, figures, CSV).
+WP_OUT ?= work-precision-out
 work-precision: build
-	mkdir -p docs/work-precision
-	./$(BUILD)/validation/evas_work_precision scenes/demo.yaml docs/work-precision 0.05
+	./validation/engine/work_precision.sh $(BUILD) $(WP_OUT)
+	for c in 1 2; do for f in study.md study.csv study.png; do \
+	  cp $(WP_OUT)/case$$c/$$f docs/work-precision/case$$c-$$f || exit 1; done; done
 
 # Regenerate the parameter reference in docs/elements.md from the declarations.
 docs: build
@@ -66,4 +70,4 @@ format:
 	clang-format -i $$(git ls-files '*.cpp' '*.h')
 
 clean:
-	rm -rf $(BUILD) $(DEMO_OUT) $(VALIDATION_OUT)
+	rm -rf $(BUILD) $(DEMO_OUT) $(VALIDATION_OUT) $(WP_OUT)

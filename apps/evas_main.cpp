@@ -20,6 +20,7 @@ const char* kUsage =
     "  elements            reference of every force element and its parameters (Markdown)\n"
     "  modal build|import  FE pipeline (gmsh, ccx) and CalculiX import to a modal body\n"
     "  spectrum RESULTS.h5 order spectrum of a channel over whole engine cycles\n"
+    "  study SUB SCENE     compare integrators: work-precision, convergence, stability\n"
     "\n"
     "`evas <command> --help` describes the options of each command.\n";
 
@@ -45,6 +46,7 @@ int main(int argc, char** argv) {
     if (cmd == "elements") return evas::cli::cmd_elements(args);
     if (cmd == "modal") return evas::cli::cmd_modal(args);
     if (cmd == "spectrum") return evas::cli::cmd_spectrum(args);
+    if (cmd == "study") return evas::cli::cmd_study(args);
   } catch (const boost::program_options::error& e) {
     std::cerr << "evas " << cmd << ": " << e.what() << " (see `evas " << cmd << " --help`)\n";
     return 1;

@@ -193,6 +193,7 @@ class FixedStepIntegrator : public Integrator {
     try {
       ok = step(t_, h);
     } catch (const RangeError& e) {
+      ++stats_.refused_states;
       failure_ = e.what();
       ok = false;
     }

@@ -115,6 +115,7 @@ class IdaIntegrator final : public Integrator {
 
   IntegratorStats stats() const override {
     IntegratorStats out = total_;
+    out.refused_states = guard_.recoverable;
     if (!mem_) return out;
     sundials::add_segment(out, segment());
     double h = 0.0;

@@ -5,13 +5,15 @@
 // Per step (the paper's Steps <4>-<6>): guess a = a_n, then repeat
 //     q = q_n + h v_n + h^2 (a_n/3 + a/6),   v = v_n + h (a_n + a)/2
 //     r = a + f(t_{n+1}, q, v)                          (out-of-balance of Eq. 1)
-//     eps = ||r||_2 / max(||a||_2, atol)                (balance error)
+//     eps = ||r||_2 / max(||a||_2, ||a_n||_2, atol)     (balance error)
 // until eps <= balance_tol (default 1e-3, the paper's 0.1 %).
 //
 // Balance error: the 2-norm of the out-of-balance of Eq. 1 (inertia plus all
-// forces, r = a + f) relative to the 2-norm of the inertia term a (floored at
-// atol so a state at rest does not divide by zero). eps = 0.001 means the
-// equation of motion balances to 0.1 % of the inertia forces.
+// forces, r = a + f) relative to the 2-norm of the inertia term over the step
+// (the larger of a and a_n, so a step ending where the acceleration crosses zero
+// is not measured against round-off; floored at atol so a state at rest does not
+// divide by zero). eps = 0.001 means the equation of motion balances to 0.1 % of
+// the inertia forces.
 //
 // The update of a is the iteration named by settings.iteration (newmark.h):
 // the paper's fixed point (default: a -= Meff^-1 r with Meff = I + (h/2) CB +

@@ -115,6 +115,7 @@ bool NewmarkIntegrator::step(double t, double h) {
   const double tol_scale = s_.step_control == "adaptive" ? 0.1 : 1.0;
   Vec& a = a1_;
   a = a_;  // predictor
+  const double a_norm = a_.norm();
   rnorms_.clear();
   bool fresh = false;  // effective-mass: matrix evaluated during this step
   bool refresh = it_ == Iteration::EffectiveMass && !have_jacobian_;
@@ -125,6 +126,7 @@ bool NewmarkIntegrator::step(double t, double h) {
       p_->force(t1, q1_.data(), v1_.data(), f1_.data());
     } catch (const RangeError& e) {
       if (k == 0) throw;  // the predictor itself: the element's own message
+      ++stats_.refused_states;
       return fail(std::string("iteration ") + std::to_string(k) +
                       " reached a state the model refuses (" + e.what() + ")",
                   t1, h, k);
@@ -135,8 +137,10 @@ bool NewmarkIntegrator::step(double t, double h) {
     rnorms_.push_back(rn);
     if (!std::isfinite(rn)) return fail("the residual is not finite", t1, h, k);
     if (par_.balance) {
+      // relative to the inertia over the step: a step that ends where the
+      // acceleration crosses zero is measured against the one it starts with
       const double inertia = am == 0.0 ? a.norm() : ((1.0 - am) * a + am * a_).norm();
-      const double eps = rn / std::max(inertia, s_.atol);
+      const double eps = rn / std::max({inertia, a_norm, s_.atol});
       if (eps <= s_.balance_tol) {
         stats_.max_step_iterations = std::max<long>(stats_.max_step_iterations, k);
         return true;  // balanced: (q1_, v1_, a1_, f1_) consistent

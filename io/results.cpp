@@ -135,6 +135,7 @@ void ResultsWriter::finish(const IntegratorStats& st, const std::string& status)
     h5::write_attribute(g, "error_test_failures", static_cast<long long>(st.error_test_failures));
     h5::write_attribute(g, "convergence_failures", static_cast<long long>(st.convergence_failures));
     h5::write_attribute(g, "restarts", static_cast<long long>(st.restarts));
+    h5::write_attribute(g, "refused_states", static_cast<long long>(st.refused_states));
     h5::write_attribute(g, "substeps", static_cast<long long>(st.substeps));
     h5::write_attribute(g, "max_step_iterations", static_cast<long long>(st.max_step_iterations));
     h5::write_attribute(g, "wall_seconds", st.wall_seconds);
@@ -248,6 +249,7 @@ void write_summary_json(const std::string& path, const RunSummary& s) {
   o << "    \"error_test_failures\": " << st.error_test_failures << ",\n";
   o << "    \"convergence_failures\": " << st.convergence_failures << ",\n";
   o << "    \"restarts\": " << st.restarts << ",\n";
+  o << "    \"refused_states\": " << st.refused_states << ",\n";
   o << "    \"substeps\": " << st.substeps << ",\n";
   o << "    \"max_step_iterations\": " << st.max_step_iterations << ",\n";
   o << "    \"wall_seconds\": " << json_number(st.wall_seconds) << ",\n";

@@ -1,0 +1,343 @@
+// evas study work-precision|convergence|stability SCENE: compare integrators on a
+// scene. The logic is in study/ (study/study.h); this file parses options.
+#include <boost/program_options.hpp>
+#include <cmath>
+#include <csignal>
+#include <cstdlib>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+
+#include "apps/commands.h"
+#include "integrators/settings.h"
+#include "study/report.h"
+#include "study/study.h"
+
+namespace evas::cli {
+
+namespace {
+
+volatile std::sig_atomic_t g_stop = 0;
+
+extern "C" void on_study_signal(int sig) {
+  g_stop = 1;
+  std::signal(sig, SIG_DFL);  // a second signal ends the process at once
+}
+
+// Installs the SIGINT/SIGTERM handlers for the life of a study.
+class SignalGuard {
+ public:
+  SignalGuard() {
+    g_stop = 0;
+    int_ = std::signal(SIGINT, on_study_signal);
+    term_ = std::signal(SIGTERM, on_study_signal);
+  }
+  ~SignalGuard() {
+    std::signal(SIGINT, int_);
+    std::signal(SIGTERM, term_);
+  }
+  SignalGuard(const SignalGuard&) = delete;
+  SignalGuard& operator=(const SignalGuard&) = delete;
+
+ private:
+  void (*int_)(int) = SIG_DFL;
+  void (*term_)(int) = SIG_DFL;
+};
+
+const char* kOverview =
+    "usage: evas study <sub-command> SCENE.yaml [options]\n"
+    "\n"
+    "Compares integrators on a scene against a reference run (docs/study.md).\n"
+    "\n"
+    "sub-commands:\n"
+    "  work-precision SCENE  error, wall time and statistics of a grid of cases\n"
+    "                        (--case, repeatable); writes study.csv/.md/.h5/.png\n"
+    "  convergence SCENE     observed order of one family sweeping step or rtol\n"
+    "                        (--case); writes convergence.csv/.md/.png\n"
+    "  stability SCENE       largest stable fixed step of one case (--case,\n"
+    "                        --step-range), optionally over a parameter sweep;\n"
+    "                        writes stability.csv/.md/.png\n"
+    "\n"
+    "`evas study <sub-command> --help` lists the options.\n"
+    "Exit codes: 0 the study completed (failed cases are results), 1 bad input,\n"
+    "2 the reference run failed, 3 convergence --expect not met, 130 interrupted.\n";
+
+const char* kGrid =
+    "Case spec: \"NAME KEY=V1,V2 KEY=A..B/N ...\": NAME an integrator (ida, cvode,\n"
+    "generalized-alpha, linear-acceleration), KEY any integrator setting (the keys of\n"
+    "`evas run --set`, see --help-settings). A comma list gives several values, A..B/N\n"
+    "N log-spaced values from A to B inclusive; the case grid is the cartesian product.\n"
+    "Settings a spec does not name keep the scene's integrator block.\n"
+    "Example: --case \"ida rtol=1e-3..1e-7/5\" --case \"generalized-alpha step=2e-5,1e-5\"\n";
+
+// Options of every sub-command.
+void add_common(po::options_description& o) {
+  o.add_options()("help,h", "show this help")(
+      "help-settings", "list every integrator setting (the KEYs of a case spec)")(
+      "param,p", po::value<std::vector<std::string>>()->composing(),
+      "ITEM.KEY=VALUE: change a scene parameter before the study, repeatable. ITEM is a glob "
+      "over the names of bodies, markers and elements (every match changes; e.g. "
+      "'main*.clearance=5e-5') or time, integrator, output; KEY may go deeper with dots "
+      "(shaft.lof.speed); VALUE is YAML (3e-5, quadrature, [1e6, 1e6, 1e6])")(
+      "t-end", po::value<double>(), "end time [s] (shortcut for --param time.end=X)")(
+      "channels", po::value<std::string>(),
+      "comma-separated globs over the output channel names, e.g. 'main*.fx,main*.fy' "
+      "(default: every channel except crank_angle)")(
+      "window", po::value<std::string>(),
+      "output times the error is taken over: all | last-cycles=N (crank-angle grid: the "
+      "last N x 720 degrees) | T0:T1 [s] (default: last-cycles=1 on a crank-angle grid, "
+      "else all)")(
+      "norm", po::value<std::string>()->default_value("max"),
+      "max: error = max over channels c and window times of |y - y_ref| / A_c; rms: the RMS "
+      "over the window per channel, then the max over channels. A_c = max over the window "
+      "of |y_ref - mean(y_ref)|, the reference's amplitude of channel c (channels with "
+      "A_c = 0 are left out)")("reference",
+                               po::value<std::string>()->default_value(study::kDefaultReference),
+                               "case spec of the reference run (one case)")(
+      "reference-file", po::value<std::string>(),
+      "compare against this results file (evas run) instead of a reference run; channels "
+      "are matched by name and times within 1e-9 relative")(
+      "out", po::value<std::string>(), "output directory (default out/study-<scene name>)")(
+      "no-plot", "do not run gnuplot (the .gp script is still written)")("quiet,q",
+                                                                         "no progress lines");
+}
+
+void add_cases(po::options_description& o) {
+  o.add_options()("case,c", po::value<std::vector<std::string>>()->composing(),
+                  "case spec \"NAME KEY=V1,V2 KEY=A..B/N ...\", repeatable")(
+      "cases", po::value<std::string>(), "file of case specs, one per line ('#' comments)")(
+      "repeats", po::value<int>()->default_value(1),
+      "runs per case; the wall time (init + integrate) is the minimum");
+}
+
+study::Options common_options(const po::variables_map& vm, const std::string& sub) {
+  study::Options o;
+  if (!vm.count("scene"))
+    throw InputError("missing SCENE file (evas study " + sub + " SCENE.yaml [options])");
+  o.scene = vm["scene"].as<std::string>();
+  if (vm.count("param")) o.params = vm["param"].as<std::vector<std::string>>();
+  if (vm.count("t-end")) {
+    const double t = vm["t-end"].as<double>();
+    if (!std::isfinite(t)) throw InputError("--t-end must be a finite number");
+    o.t_end = t;
+  }
+  if (vm.count("channels")) o.channels = vm["channels"].as<std::string>();
+  if (vm.count("window")) o.window = vm["window"].as<std::string>();
+  o.norm = vm["norm"].as<std::string>();
+  o.reference = vm["reference"].as<std::string>();
+  if (vm.count("reference-file")) {
+    o.reference_file = vm["reference-file"].as<std::string>();
+    if (!vm["reference"].defaulted())
+      throw InputError("give --reference or --reference-file, not both");
+  }
+  if (vm.count("repeats")) o.repeats = vm["repeats"].as<int>();
+  if (vm.count("out")) o.out_dir = vm["out"].as<std::string>();
+  o.plot = !vm.count("no-plot");
+  if (!vm.count("quiet")) o.log = &std::cerr;
+  o.stop = [] { return g_stop != 0; };
+  study::parse_norm(o.norm);  // bad values are input errors before anything runs
+  return o;
+}
+
+std::vector<study::CaseInput> case_inputs(const po::variables_map& vm) {
+  std::vector<study::CaseInput> in;
+  if (vm.count("case"))
+    for (const auto& c : vm["case"].as<std::vector<std::string>>()) in.push_back({c, ""});
+  if (vm.count("cases"))
+    for (const auto& [spec, where] : study::read_cases_file(vm["cases"].as<std::string>()))
+      in.push_back({spec, where});
+  return in;
+}
+
+void print_files(const study::StudyInfo& info, bool quiet) {
+  if (quiet) return;
+  for (const auto& f : info.files) std::cerr << "  " << f << "\n";
+}
+
+std::string read_text(const std::string& path) {
+  std::ifstream in(path);
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+int finish(const study::StudyInfo& info, bool quiet) {
+  print_files(info, quiet);
+  if (info.interrupted) {
+    std::cerr << "evas study: interrupted; the outputs hold the cases run so far\n";
+    return 130;
+  }
+  return 0;
+}
+
+int work_precision(const std::vector<std::string>& args) {
+  po::options_description opts(
+      "usage: evas study work-precision SCENE.yaml [--case SPEC]... [options]\n\n"
+      "Runs every case of the case grid and the reference on the scene and measures each\n"
+      "case's error against the reference, its wall time and all integrator statistics.\n"
+      "A failed case is recorded with its message and the study goes on. Writes\n"
+      "DIR/study.csv (every setting and statistic), study.md (table), study.h5 (the\n"
+      "same table plus the reference channels) after every case, and study.png\n"
+      "(gnuplot: error against wall time and against residual evaluations, one curve\n"
+      "per integrator family) at the end. Ctrl-C / SIGTERM: stop after the current run,\n"
+      "mark the rest 'not run', write the outputs, exit 130.\n\n"
+      "Default cases: \"ida rtol=1e-3..1e-8/6\", \"cvode rtol=1e-3..1e-8/6\",\n"
+      "\"generalized-alpha step=4e-5,2e-5,1e-5,5e-6\",\n"
+      "\"linear-acceleration step=4e-5,2e-5,1e-5,5e-6\".\n\n" +
+      std::string(kGrid) +
+      "\nExit codes: 0 completed (even with failed cases), 1 bad input, 2 the reference\n"
+      "failed, 130 interrupted.\n\noptions");
+  add_cases(opts);
+  add_common(opts);
+  po::variables_map vm;
+  if (parse_args(args, opts, {"scene"}, vm)) return 0;
+  if (vm.count("help-settings")) {
+    std::cout << settings_reference();
+    return 0;
+  }
+  const study::Options o = common_options(vm, "work-precision");
+  const auto specs = case_inputs(vm);
+  SignalGuard guard;
+  try {
+    const auto res = study::work_precision(o, specs);
+    std::cout << read_text(res.info.out_dir + "/study.md");
+    return finish(res.info, vm.count("quiet") > 0);
+  } catch (const study::ReferenceFailed& e) {
+    std::cerr << "evas study work-precision: " << e.what() << "\n";
+    return 2;
+  }
+}
+
+int convergence(const std::vector<std::string>& args) {
+  po::options_description opts(
+      "usage: evas study convergence SCENE.yaml --case SPEC [options]\n\n"
+      "Runs one family sweeping step or rtol (e.g. --case \"generalized-alpha\n"
+      "step_control=fixed step=4e-5..2.5e-6/5\") against the reference and reports the\n"
+      "error at every value, the order between successive values, log(e_i/e_(i-1)) /\n"
+      "log(x_i/x_(i-1)), and the observed order: the least-squares slope of log(error)\n"
+      "against log(step or rtol) over the completed cases. Prints the slope; writes\n"
+      "DIR/convergence.csv, convergence.md and convergence.png.\n"
+      "With --expect ORDER the exit code is 3 when |slope - ORDER| > --tolerance (or no\n"
+      "slope could be fitted), for use in CI.\n\n" +
+      std::string(kGrid) +
+      "\nExit codes: 0 completed, 1 bad input, 2 the reference failed, 3 --expect not\n"
+      "met, 130 interrupted.\n\noptions");
+  opts.add_options()("case,c", po::value<std::string>(), "the case family (one spec)")(
+      "repeats", po::value<int>()->default_value(1),
+      "runs per case; the wall time (init + integrate) is the minimum")(
+      "expect", po::value<double>(), "expected order: exit 3 when the slope is off")(
+      "tolerance", po::value<double>()->default_value(0.1),
+      "allowed |slope - expected order| with --expect");
+  add_common(opts);
+  po::variables_map vm;
+  if (parse_args(args, opts, {"scene"}, vm)) return 0;
+  if (vm.count("help-settings")) {
+    std::cout << settings_reference();
+    return 0;
+  }
+  const study::Options o = common_options(vm, "convergence");
+  if (!vm.count("case")) throw InputError("missing --case SPEC (one family sweeping step or rtol)");
+  if (vm.count("tolerance") && !(vm["tolerance"].as<double>() >= 0))
+    throw InputError("--tolerance must be >= 0");
+  SignalGuard guard;
+  try {
+    const auto res = study::convergence(o, {vm["case"].as<std::string>(), ""});
+    std::cout << "observed order (least-squares slope of log error against log " << res.key << ", "
+              << res.points << " points): ";
+    if (std::isnan(res.slope))
+      std::cout << "none (fewer than two completed cases with a positive error)\n";
+    else
+      std::cout << study::gnum(res.slope, 4) << "\n";
+    const int code = finish(res.info, vm.count("quiet") > 0);
+    if (code) return code;
+    if (vm.count("expect")) {
+      const double want = vm["expect"].as<double>(), tol = vm["tolerance"].as<double>();
+      if (std::isnan(res.slope) || std::abs(res.slope - want) > tol) {
+        std::cerr << "evas study convergence: observed order " << study::gnum(res.slope, 4)
+                  << " is not " << want << " +- " << tol << "\n";
+        return 3;
+      }
+    }
+    return 0;
+  } catch (const study::ReferenceFailed& e) {
+    std::cerr << "evas study convergence: " << e.what() << "\n";
+    return 2;
+  }
+}
+
+int stability(const std::vector<std::string>& args) {
+  po::options_description opts(
+      "usage: evas study stability SCENE.yaml --case SPEC --step-range HMIN:HMAX [options]\n\n"
+      "Finds the largest fixed step h in [HMIN, HMAX] at which one case (generalized-alpha or\n"
+      "linear-acceleration; its own step is ignored) completes and stays stable: for\n"
+      "every selected channel, max |y| over the run (after the first output) is at most\n"
+      "--growth times the reference run's. HMAX is tried first (\"stable up to HMAX\"),\n"
+      "then HMIN (\"unstable at HMIN\" if not), then --bisections bisections in log h.\n"
+      "With --sweep ITEM.KEY=V1,V2,... (ITEM.KEY as for --param; A..B/N log ranges\n"
+      "allowed) the search is repeated on each changed scene, with its own reference\n"
+      "run. Use step_control=fixed in the case so that a failed step is not cut.\n"
+      "Writes DIR/stability.csv, stability.md and (with --sweep) stability.png, the\n"
+      "largest stable step against the swept parameter. --window and --norm do not\n"
+      "apply (the whole run is checked).\n\n"
+      "Exit codes: 0 completed, 1 bad input, 2 the reference failed (without --sweep;\n"
+      "with it the point is marked 'reference failed'), 130 interrupted.\n\noptions");
+  opts.add_options()("case,c", po::value<std::string>(), "the case (one integrator setting)")(
+      "step-range", po::value<std::string>(), "HMIN:HMAX, the steps searched [s]")(
+      "sweep", po::value<std::string>(),
+      "ITEM.KEY=V1,V2,...: repeat the search over a scene parameter")(
+      "growth", po::value<double>()->default_value(10.0),
+      "largest allowed max|y| / reference max|y| per channel")(
+      "bisections", po::value<int>()->default_value(12), "bisections in log h");
+  add_common(opts);
+  po::variables_map vm;
+  if (parse_args(args, opts, {"scene"}, vm)) return 0;
+  if (vm.count("help-settings")) {
+    std::cout << settings_reference();
+    return 0;
+  }
+  const study::Options o = common_options(vm, "stability");
+  if (!vm.count("case")) throw InputError("missing --case SPEC");
+  if (!vm.count("step-range")) throw InputError("missing --step-range HMIN:HMAX");
+  study::StabilityOptions so;
+  {
+    const std::string r = vm["step-range"].as<std::string>();
+    const auto colon = r.find(':');
+    char* e1 = nullptr;
+    char* e2 = nullptr;
+    const std::string a = colon == std::string::npos ? "" : r.substr(0, colon);
+    const std::string b = colon == std::string::npos ? "" : r.substr(colon + 1);
+    so.h_min = std::strtod(a.c_str(), &e1);
+    so.h_max = std::strtod(b.c_str(), &e2);
+    if (a.empty() || b.empty() || *e1 || *e2)
+      throw InputError("--step-range '" + r + "': expected HMIN:HMAX in seconds");
+  }
+  if (vm.count("sweep")) so.sweep = vm["sweep"].as<std::string>();
+  so.growth = vm["growth"].as<double>();
+  so.bisections = vm["bisections"].as<int>();
+  SignalGuard guard;
+  try {
+    const auto res = study::stability(o, {vm["case"].as<std::string>(), ""}, so);
+    std::cout << read_text(res.info.out_dir + "/stability.md");
+    return finish(res.info, vm.count("quiet") > 0);
+  } catch (const study::ReferenceFailed& e) {
+    std::cerr << "evas study stability: " << e.what() << "\n";
+    return 2;
+  }
+}
+
+}  // namespace
+
+int cmd_study(const std::vector<std::string>& args) {
+  if (args.size() < 2 || args[1] == "--help" || args[1] == "-h" || args[1] == "help") {
+    std::cout << kOverview;
+    return args.size() < 2 ? 1 : 0;
+  }
+  const std::vector<std::string> sub(args.begin() + 1, args.end());
+  if (sub[0] == "work-precision") return work_precision(sub);
+  if (sub[0] == "convergence") return convergence(sub);
+  if (sub[0] == "stability") return stability(sub);
+  std::cerr << "evas study: unknown sub-command '" << sub[0] << "'\n\n" << kOverview;
+  return 1;
+}
+
+}  // namespace evas::cli

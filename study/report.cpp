@@ -1,0 +1,133 @@
+// Output helpers of the studies (report.h).
+#include "study/report.h"
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+
+namespace evas::study {
+
+const std::vector<StatField>& stat_fields() {
+  using S = IntegratorStats;
+  static const std::vector<StatField> f = {
+      {"steps", [](const S& s) { return double(s.steps); }, true},
+      {"residual_evals", [](const S& s) { return double(s.residual_evals); }, true},
+      {"jacobian_evals", [](const S& s) { return double(s.jacobian_evals); }, true},
+      {"linear_setups", [](const S& s) { return double(s.linear_setups); }, true},
+      {"linear_solves", [](const S& s) { return double(s.linear_solves); }, true},
+      {"nonlinear_iterations", [](const S& s) { return double(s.nonlinear_iterations); }, true},
+      {"error_test_failures", [](const S& s) { return double(s.error_test_failures); }, true},
+      {"convergence_failures", [](const S& s) { return double(s.convergence_failures); }, true},
+      {"restarts", [](const S& s) { return double(s.restarts); }, true},
+      {"substeps", [](const S& s) { return double(s.substeps); }, true},
+      {"max_step_iterations", [](const S& s) { return double(s.max_step_iterations); }, true},
+      {"wall_seconds", [](const S& s) { return s.wall_seconds; }, false},
+      {"last_step", [](const S& s) { return s.last_step; }, false},
+      {"min_step", [](const S& s) { return s.min_step; }, false},
+      {"max_step", [](const S& s) { return s.max_step; }, false},
+      {"last_order", [](const S& s) { return double(s.last_order); }, true},
+  };
+  return f;
+}
+
+std::string csv_field(const std::string& s) {
+  if (s.find_first_of(",\"\n\r") == std::string::npos) return s;
+  std::string out = "\"";
+  for (char c : s) {
+    if (c == '"') out += '"';
+    out += c;
+  }
+  return out + "\"";
+}
+
+std::string md_cell(const std::string& s, std::size_t max_len) {
+  std::string out;
+  std::size_t n = 0;
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    if (max_len && n >= max_len) {
+      out += "...";
+      break;
+    }
+    const char c = s[i];
+    if (c == '|')
+      out += "\\|";
+    else if (c == '\n' || c == '\r')
+      out += ' ';
+    else
+      out += c;
+    ++n;
+  }
+  return out;
+}
+
+std::string sci(double x, int digits) {
+  if (std::isnan(x)) return "";
+  char buf[48];
+  std::snprintf(buf, sizeof buf, "%.*e", digits, x);
+  return buf;
+}
+
+std::string gnum(double x, int digits) {
+  if (std::isnan(x)) return "";
+  char buf[48];
+  std::snprintf(buf, sizeof buf, "%.*g", digits, x);
+  return buf;
+}
+
+std::string inum(double x) {
+  if (std::isnan(x)) return "";
+  char buf[48];
+  std::snprintf(buf, sizeof buf, "%.0f", x);
+  return buf;
+}
+
+void write_file_atomic(const std::filesystem::path& path, const std::string& text) {
+  const std::filesystem::path tmp = path.string() + ".tmp";
+  {
+    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+    if (!out) throw RunError(tmp.string() + ": cannot write");
+    out << text;
+    out.close();
+    if (!out) throw RunError(tmp.string() + ": write failed");
+  }
+  std::error_code ec;
+  std::filesystem::rename(tmp, path, ec);
+  if (ec) throw RunError(path.string() + ": cannot replace: " + ec.message());
+}
+
+namespace {
+
+std::string shell_quote(const std::string& s) {
+  std::string out = "'";
+  for (char c : s) {
+    if (c == '\'')
+      out += "'\\''";
+    else
+      out += c;
+  }
+  return out + "'";
+}
+
+}  // namespace
+
+bool have_gnuplot() { return std::system("command -v gnuplot >/dev/null 2>&1") == 0; }
+
+bool run_gnuplot(const std::filesystem::path& script) {
+  // from the script's folder: the script names its output without a folder
+  const std::filesystem::path dir = script.has_parent_path() ? script.parent_path() : ".";
+  const std::string cmd = "cd " + shell_quote(dir.string()) + " && gnuplot " +
+                          shell_quote(script.filename().string()) + " >/dev/null 2>&1";
+  return std::system(cmd.c_str()) == 0;
+}
+
+std::string gp_quote(const std::string& s) {
+  std::string out = "'";
+  for (char c : s) {
+    if (c == '\'') out += '\'';
+    out += c;
+  }
+  return out + "'";
+}
+
+}  // namespace evas::study

@@ -1,0 +1,123 @@
+// One run of a study case (run_case.h).
+#include "study/run_case.h"
+
+#include <chrono>
+#include <cmath>
+#include <memory>
+
+#include "io/outputs.h"
+#include "solver/system.h"
+
+namespace evas::study {
+
+SceneInfo probe_scene(const SceneSource& src) {
+  Scene scene = src.parse();
+  System sys(*scene.model);
+  OutputSet out(scene.output, sys, scene.t_start, scene.t_end);
+  if (out.times().empty())
+    throw InputError(scene.path + ": output: the grid has no output time in [" +
+                     std::to_string(scene.t_start) + ", " + std::to_string(scene.t_end) + "] s");
+  SceneInfo info;
+  info.name = scene.name;
+  info.grid = scene.output.grid;
+  info.channels = out.channels();
+  info.times = out.times();
+  info.integrator = scene.integrator;
+  info.t_start = scene.t_start;
+  info.t_end = scene.t_end;
+  if (scene.output.grid == "crank-angle")
+    for (std::size_t i = 0; i < info.channels.size(); ++i)
+      if (info.channels[i].name == "crank_angle") info.crank_channel = static_cast<int>(i);
+  if (info.crank_channel >= 0) {
+    // the angle is kinematic (the crank body's LOF): the initial state serves at every time
+    Vec q0, v0;
+    sys.initial_state(q0, v0);
+    std::vector<double> row(static_cast<std::size_t>(out.size()));
+    try {
+      for (double t : info.times) {
+        out.values(t, q0.data(), v0.data(), row.data());
+        info.crank.push_back(row[static_cast<std::size_t>(info.crank_channel)]);
+      }
+    } catch (const std::exception&) {
+      info.crank.clear();  // an element refused the initial state: angles come from the reference
+    }
+  }
+  return info;
+}
+
+RunData run_case(const SceneSource& src, const IntegratorSettings& settings,
+                 const std::vector<int>& channels, const RowCheck& check) {
+  RunData d;
+  std::unique_ptr<Integrator> integ;
+  std::vector<double> rows;  // row-major, channels.size() per row
+  std::chrono::steady_clock::time_point t0;
+  bool timing = false;
+  try {
+    Scene scene = src.parse();
+    System sys(*scene.model);
+    OutputSet out(scene.output, sys, scene.t_start, scene.t_end);
+    int crank = -1;
+    if (scene.output.grid == "crank-angle")
+      for (int i = 0; i < out.size(); ++i)
+        if (out.channels()[static_cast<std::size_t>(i)].name == "crank_angle") crank = i;
+    std::vector<double> row(static_cast<std::size_t>(out.size()));
+    std::vector<double> sel(channels.size());
+    auto record = [&](double t, const double* q, const double* v) {
+      out.values(t, q, v, row.data());
+      for (std::size_t k = 0; k < channels.size(); ++k) {
+        sel[k] = row[static_cast<std::size_t>(channels[k])];
+        if (!std::isfinite(sel[k]))
+          throw RunError("channel '" + out.channels()[static_cast<std::size_t>(channels[k])].name +
+                         "' is not finite at t = " + std::to_string(t) + " s");
+      }
+      d.time.push_back(t);
+      if (crank >= 0) d.crank.push_back(row[static_cast<std::size_t>(crank)]);
+      rows.insert(rows.end(), sel.begin(), sel.end());
+      if (check) check(t, sel.data());
+    };
+    integ = make_integrator(settings.name);
+    Vec q0, v0;
+    sys.initial_state(q0, v0);
+    std::vector<double> times = out.times();
+    t0 = std::chrono::steady_clock::now();
+    timing = true;
+    const double eps = 1e-12 * std::max(1.0, std::abs(scene.t_start));
+    if (!times.empty() && times.front() <= scene.t_start + eps) {
+      record(scene.t_start, q0.data(), v0.data());
+      times.erase(times.begin());
+    }
+    integ->init(sys, scene.t_start, q0, v0, settings);
+    integrate(*integ, sys, scene.t_start, times,
+              [&](double t, const Vec& q, const Vec& v) { record(t, q.data(), v.data()); });
+    d.wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    d.status = "completed";
+  } catch (const std::exception& e) {
+    d.status = "failed";
+    d.message = e.what();
+    if (timing)
+      d.wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  }
+  if (integ) d.stats = integ->stats();
+  const long nr = d.rows();
+  const long nc = static_cast<long>(channels.size());
+  d.y.resize(nr, nc);
+  for (long r = 0; r < nr; ++r)
+    for (long c = 0; c < nc; ++c) d.y(r, c) = rows[static_cast<std::size_t>(r * nc + c)];
+  return d;
+}
+
+RunData run_case_repeated(const SceneSource& src, const IntegratorSettings& settings,
+                          const std::vector<int>& channels, int repeats,
+                          const std::function<bool()>& stop) {
+  RunData best = run_case(src, settings, channels);
+  for (int k = 1; k < repeats && best.status == "completed"; ++k) {
+    if (stop && stop()) break;
+    RunData again = run_case(src, settings, channels);
+    if (again.status != "completed") return again;
+    again.wall = std::min(again.wall, best.wall);
+    best = std::move(again);
+  }
+  return best;
+}
+
+}  // namespace evas::study

@@ -1,0 +1,61 @@
+// One run of a study case: parse the scene (its own model), build System and
+// OutputSet, make the integrator, init and integrate, collecting the selected
+// channels at the output times. Any std::exception from the run is caught and
+// recorded (status "failed" with the message); the rows before it are kept.
+#pragma once
+
+#include <functional>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "elements/element.h"
+#include "integrators/integrator.h"
+#include "study/scene_edit.h"
+
+namespace evas::study {
+
+/// The output grid and channels of a scene (from a probe build).
+struct SceneInfo {
+  std::string name;
+  std::string grid;  ///< "time" or "crank-angle"
+  std::vector<Channel> channels;
+  std::vector<double> times;
+  std::vector<double> crank;      ///< crank angle at every output time [deg] (crank-angle grid)
+  int crank_channel = -1;         ///< index of crank_angle, -1 on the time grid
+  IntegratorSettings integrator;  ///< the scene's integrator block
+  double t_start = 0.0, t_end = 0.0;
+};
+
+/// Parses the scene and builds its outputs once. Throws InputError.
+SceneInfo probe_scene(const SceneSource& src);
+
+/// Collected output of one run.
+struct RunData {
+  std::string status = "not run";  ///< "completed", "failed" or "not run"
+  std::string message;
+  std::vector<double> time;
+  std::vector<double> crank;  ///< crank angle per row (crank-angle grid)
+  Mat y;                      ///< rows x selected channels
+  IntegratorStats stats;
+  double wall = std::numeric_limits<double>::quiet_NaN();  ///< init + integrate [s]
+  long rows() const { return static_cast<long>(time.size()); }
+};
+
+/// Called with (t, selected values) at every output row; may throw to stop the
+/// run (the run is then "failed" with the exception's message).
+using RowCheck = std::function<void(double t, const double* values)>;
+
+/// Runs `settings` on the scene, keeping the `channels` (indices into the
+/// scene's channels). Never throws for a failure of the run itself.
+RunData run_case(const SceneSource& src, const IntegratorSettings& settings,
+                 const std::vector<int>& channels, const RowCheck& check = nullptr);
+
+/// run_case `repeats` times (stopping at the first failure); the wall time is
+/// the minimum over the runs, data and statistics are those of the last run.
+/// `stop` (may be empty) is asked before each repeat after the first.
+RunData run_case_repeated(const SceneSource& src, const IntegratorSettings& settings,
+                          const std::vector<int>& channels, int repeats,
+                          const std::function<bool()>& stop = nullptr);
+
+}  // namespace evas::study
