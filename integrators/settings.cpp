@@ -209,11 +209,16 @@ void apply_setting_assignment(IntegratorSettings& s, const std::string& assignme
 std::string settings_label(const IntegratorSettings& s) {
   IntegratorSettings d;
   d.name = s.name;
+  // the accuracy knob is always named, even at its default value
+  const bool newmark = s.name == "generalized-alpha" || s.name == "linear-acceleration";
+  const bool adaptive = !newmark || s.step_control == "adaptive";
   std::string out = s.name;
   for (const auto& e : table()) {
-    if (e.info.key == "name") continue;
+    const std::string& key = e.info.key;
+    if (key == "name") continue;
+    const bool knob = (key == "rtol" && adaptive) || (key == "step" && newmark && !adaptive);
     const std::string v = e.get(s);
-    if (v != e.get(d)) out += " " + e.info.key + "=" + v;
+    if (knob || v != e.get(d)) out += " " + key + "=" + v;
   }
   return out;
 }

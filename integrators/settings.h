@@ -33,8 +33,9 @@ std::string get_integrator_setting(const IntegratorSettings& s, const std::strin
 /// Applies "KEY=VALUE" (as given to --set). Throws InputError naming the option.
 void apply_setting_assignment(IntegratorSettings& s, const std::string& assignment);
 
-/// "name key=value ..." of the settings that differ from a default-constructed
-/// IntegratorSettings with the same name (a compact label for tables).
+/// "name key=value ..." of the accuracy knob (rtol of an adaptive method, step
+/// of a fixed-step one) and of every setting that differs from a
+/// default-constructed IntegratorSettings (a compact label for tables).
 std::string settings_label(const IntegratorSettings& s);
 
 /// Markdown table of every setting (for --help-settings and the user guide).

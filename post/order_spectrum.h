@@ -1,4 +1,4 @@
-// Order spectra of engine results (formulation.md s. 8).
+// Order spectra of engine results (docs/theory.md s. 8).
 //
 // Engine results are read against crank angle and engine order. Given samples
 // on a uniform crank-angle grid, the spectrum is taken over a whole number of

@@ -20,6 +20,19 @@ namespace fs = std::filesystem;
 
 namespace {
 
+// A settings label without the tokens "KEY=..." of the given keys.
+std::string strip_keys(const std::string& label, const std::set<std::string>& keys) {
+  std::istringstream is(label);
+  std::string word, out;
+  while (is >> word) {
+    const auto eq = word.find('=');
+    if (eq != std::string::npos && keys.count(word.substr(0, eq))) continue;
+    out += (out.empty() ? "" : " ") + word;
+  }
+  return out;
+}
+
+
 const double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 bool stopped(const Options& o) { return o.stop && o.stop(); }
@@ -424,11 +437,7 @@ void write_info_attributes(hid_t f, const std::string& kind, const StudyInfo& in
 std::string family_of(const Case& c) {
   static const std::set<std::string> knobs = {"rtol",        "atol",     "step",
                                               "balance_tol", "max_step", "min_step"};
-  IntegratorSettings s = c.settings;
-  IntegratorSettings d;
-  d.name = s.name;
-  for (const auto& k : knobs) set_integrator_setting(s, k, get_integrator_setting(d, k));
-  return settings_label(s);
+  return strip_keys(settings_label(c.settings), knobs);
 }
 
 bool plot(const Options& opt, const fs::path& script, const std::string& text, StudyInfo& info,
@@ -695,12 +704,7 @@ ConvergenceResult convergence(const Options& opt, const CaseInput& spec) {
   std::stable_sort(cases.begin(), cases.end(),
                    [&](const Case& a, const Case& b) { return value(a) > value(b); });
   if (opt.reference_file.empty()) reference_case(opt.reference, s.info.integrator);
-  {
-    Case f = cases.front();
-    set_integrator_setting(f.settings, res.key,
-                           get_integrator_setting(IntegratorSettings{}, res.key));
-    res.family = settings_label(f.settings);
-  }
+  res.family = strip_keys(settings_label(cases.front().settings), {res.key});
 
   say(opt, "evas study: convergence of " + res.family + " over " + res.key + ", " +
                std::to_string(cases.size()) + " cases -> " + s.out.string());
