@@ -64,7 +64,8 @@ docs: build
 BODIES ?= crankshaft block
 .PHONY: bodies
 bodies: build
-	for b in $(BODIES); do ./$(BUILD)/evas modal build validation/bodies/$$b.yaml || exit 1; done
+	for b in $(BODIES); do \
+	  ./$(BUILD)/evas modal build validation/bodies/$$b.yaml --out validation/bodies || exit 1; done
 
 format:
 	clang-format -i $$(git ls-files '*.cpp' '*.h')

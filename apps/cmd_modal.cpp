@@ -38,12 +38,14 @@ void print_body(const std::string& out, const ModalBody& body) {
 }
 
 const char* kModalUsage =
-    "usage: evas modal build PARAMS.yaml [--quiet]\n"
+    "usage: evas modal build PARAMS.yaml [--out DIR] [--quiet]\n"
     "       evas modal import --inp X.inp (--sti X.sti --mas X.mas --dof X.dof |\n"
     "                          --frd X.frd --dat X.dat --mas X.mas --dof X.dof) -o BODY.h5\n"
     "\n"
     "build:  runs gmsh -> ccx (matrix storage) -> the evas eigen-solver and writes the body\n"
-    "        file named in PARAMS.yaml, printing the wall time of each stage. With\n"
+    "        file named in PARAMS.yaml ('output', default NAME.h5) into DIR (default: the\n"
+    "        current folder), its FE files into DIR/'work_dir' (default NAME-fe), and\n"
+    "        prints the wall time of each stage. With\n"
     "        'reduce:' in PARAMS.yaml the body keeps only the nodes of its node sets (and\n"
     "        extra nodes) plus the stored invariants of the full body (docs/body-format.md).\n"
     "import: reads CalculiX output. With --sti the modes are computed by evas from K and M;\n"
@@ -52,7 +54,9 @@ const char* kModalUsage =
 
 int modal_build(const std::vector<std::string>& args) {
   po::options_description opts("options");
-  opts.add_options()("help,h", "show this help")("quiet,q", "no stage timing");
+  opts.add_options()("help,h", "show this help")("quiet,q", "no stage timing")(
+      "out,o", po::value<std::string>(),
+      "folder of the body file and the FE work folder (default: the current folder)");
   po::options_description hidden;
   hidden.add_options()("params", po::value<std::string>(), "parameter file");
   po::options_description all;
@@ -72,7 +76,8 @@ int modal_build(const std::vector<std::string>& args) {
   }
   const bool verbose = !vm.count("quiet");
   const auto t0 = std::chrono::steady_clock::now();
-  const PipelineParams p = read_pipeline_params(vm["params"].as<std::string>());
+  const PipelineParams p = read_pipeline_params(vm["params"].as<std::string>(),
+                                                vm.count("out") ? vm["out"].as<std::string>() : "");
   if (verbose)
     std::printf("evas modal build: %s (work folder %s)\n", p.name.c_str(), p.work_dir.c_str());
   const PipelineResult r = run_pipeline(p, verbose);

@@ -182,7 +182,11 @@ void JournalBearing::fail_if_closed(double t, double e) const {
   const double eps = e / p_.clearance;
   if (!(eps < 1.0))
     throw RangeError("journal bearing '" + name() + "': film closed, eccentricity ratio " +
-                     fmt(eps) + " >= 1 at t = " + fmt(t) + " s");
+                     fmt(eps) + " >= 1 at t = " + fmt(t) + " s (journal centre " + fmt(e) +
+                     " m off the bearing centre, radial clearance " + fmt(p_.clearance) +
+                     " m). At the start this means the two markers do not share a centre: "
+                     "give set markers a 'centre' on the bearing axis (a surface set's node "
+                     "centroid lies off the axis by the mesh's irregularity)");
   if (eps > p_.eps_max && !(p_.contact_stiffness > 0.0))
     throw RangeError(
         "journal bearing '" + name() + "': eccentricity ratio " + fmt(eps) +

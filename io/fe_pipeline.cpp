@@ -93,7 +93,7 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
 
 }  // namespace
 
-PipelineParams read_pipeline_params(const std::string& yaml_path) {
+PipelineParams read_pipeline_params(const std::string& yaml_path, const std::string& out_dir) {
   YAML::Node root;
   try {
     root = YAML::LoadFile(yaml_path);
@@ -194,8 +194,13 @@ PipelineParams read_pipeline_params(const std::string& yaml_path) {
   if (root["ccx_eigen"]) p.ccx_eigen = root["ccx_eigen"].as<bool>();
   if (root["ccx_modes"]) p.ccx_modes = static_cast<int>(y.number(root["ccx_modes"], "ccx_modes"));
   const std::string stem = fs::path(yaml_path).stem().string();
-  p.work_dir = resolve(root["work_dir"] ? y.text(root["work_dir"], "work_dir") : stem + "-fe");
-  p.output = resolve(root["output"] ? y.text(root["output"], "output") : stem + ".h5");
+  const fs::path out_base = fs::absolute(out_dir.empty() ? fs::path(".") : fs::path(out_dir));
+  auto in_out = [&](const std::string& q) {
+    const fs::path r(q);
+    return (r.is_absolute() ? r : out_base / r).lexically_normal().string();
+  };
+  p.work_dir = in_out(root["work_dir"] ? y.text(root["work_dir"], "work_dir") : stem + "-fe");
+  p.output = in_out(root["output"] ? y.text(root["output"], "output") : stem + ".h5");
   return p;
 }
 

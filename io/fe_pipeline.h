@@ -31,8 +31,8 @@ struct PipelineParams {
   std::vector<std::string> interface_sets;
   bool ccx_eigen = false;  ///< also run ccx's *FREQUENCY (frd/dat) for comparison
   int ccx_modes = 0;       ///< modes asked from ccx (0: 6 + elastic + 4, at least 16)
-  std::string work_dir;    ///< where meshes, decks, logs go (relative to the YAML)
-  std::string output;      ///< body file (relative to the YAML)
+  std::string work_dir;    ///< where meshes, decks, logs go (relative to the output folder)
+  std::string output;      ///< body file (relative to the output folder)
   /// Store the invariants and mass properties of the full body in the file
   /// (format version 2; a simulation then does not recompute them).
   bool store_invariants = true;
@@ -41,8 +41,10 @@ struct PipelineParams {
   std::optional<ReduceOptions> reduce;
 };
 
-/// Reads the YAML parameter file; relative paths are resolved against its folder.
-PipelineParams read_pipeline_params(const std::string& yaml_path);
+/// Reads the YAML parameter file. `geometry` is relative to the file's folder;
+/// `output` and `work_dir` are relative to `out_dir` ("" = the current folder),
+/// so a build never writes next to its parameter file unless asked to.
+PipelineParams read_pipeline_params(const std::string& yaml_path, const std::string& out_dir = "");
 
 /// Wall time, peak memory is not measured here (use /usr/bin/time -v).
 struct StageTime {

@@ -18,17 +18,20 @@ evas=$build/evas
 mkdir -p "$out"
 
 # Case 2: the same scene with stiff mounts (1e9 N/m: the block on rigid ground).
-# Scenes are written next to engine.yaml so that its relative paths still hold.
-case1=$dir/.case1.yaml
-case2=$dir/.case2.yaml
-trap 'rm -f "$case1" "$case2"' EXIT
-sed -e "s/^name: engine-case1/name: engine-case1/" "$dir/engine.yaml" > "$case1"
-awk '/# MOUNTS BEGIN/ {print; skip = 1
+# Both scenes go to a temporary folder (nothing is written into the source
+# tree), with the body and pressure files of engine.yaml as absolute paths.
+tmp=$(mktemp -d "${TMPDIR:-/tmp}/evas-validation.XXXXXX")
+trap 'rm -rf "$tmp"' EXIT
+case1=$tmp/case1.yaml
+case2=$tmp/case2.yaml
+absolute="s|\.\./bodies/|$dir/../bodies/|g; s|\.\./data/|$dir/../data/|g"
+sed -e "$absolute" "$dir/engine.yaml" > "$case1"
+sed -e "$absolute" "$dir/engine.yaml" | awk '/# MOUNTS BEGIN/ {print; skip = 1
        for (i = 1; i <= 4; i++)
          printf "  - {name: mount%d, type: engine-mount, markers: [g%d, m%d], k_x: [1e9], k_y: [1e9],\n     k_z: [1e9], damping: [1e4, 1e4, 1e4]}\n", i, i, i
        next}
      /# MOUNTS END/ {skip = 0}
-     !skip {print}' "$dir/engine.yaml" | sed -e "s/^name: engine-case1/name: engine-case2/" > "$case2"
+     !skip {print}' | sed -e "s/^name: engine-case1/name: engine-case2/" > "$case2"
 if [ -n "$end" ]; then
   for f in "$case1" "$case2"; do
     sed -i -e "s/^time: {start: 0, end: [0-9.e-]*}/time: {start: 0, end: $end}/" "$f"
