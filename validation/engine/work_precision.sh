@@ -33,7 +33,7 @@ for c in $cases; do
     --reference "ida rtol=1e-9 atol=1e-12" \
     --case "ida rtol=1e-3..1e-7/5" \
     --case "cvode rtol=1e-3..1e-6/4" \
-    --case "cvode method=adams rtol=1e-4 max_steps=20000" \
+    --case "cvode method=adams rtol=1e-4 max_steps=1000" \
     --case "generalized-alpha step=2e-5,1e-5,5e-6,2.5e-6" \
     --case "generalized-alpha step_control=adaptive rtol=1e-3..1e-5/3" \
     --case "linear-acceleration iteration=effective-mass step=2e-5,1e-5,5e-6,2.5e-6" \
