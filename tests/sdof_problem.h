@@ -62,6 +62,27 @@ inline void oscillator_solution(const Oscillator& o, double t0, double q0, doubl
   v = vp(t) + e * ((-z * w * A + wd * B) * c + (-z * w * B - wd * A) * s);
 }
 
+/// The standard set: 1 Hz lightly damped free; 3 Hz damped and forced at 1.7 Hz; 0.5 Hz undamped.
+inline std::vector<Oscillator> oscillators(std::size_t count = 3) {
+  Oscillator a;
+  a.omega = 2 * M_PI * 1.0;
+  a.zeta = 0.05;
+  a.q0 = 1.0;
+  Oscillator b;
+  b.omega = 2 * M_PI * 3.0;
+  b.zeta = 0.2;
+  b.force = 10.0;
+  b.force_freq = 2 * M_PI * 1.7;
+  b.v0 = 0.5;
+  Oscillator c;
+  c.omega = 2 * M_PI * 0.5;
+  c.q0 = -0.3;
+  c.v0 = 1.0;
+  std::vector<Oscillator> all = {a, b, c};
+  all.resize(count);
+  return all;
+}
+
 class SdofProblem : public Problem {
  public:
   explicit SdofProblem(std::vector<Oscillator> osc, bool body_part = true,

@@ -25,24 +25,7 @@ using test::Stop;
 
 constexpr double kPi = 3.14159265358979323846;
 
-// 1 Hz lightly damped free; 3 Hz damped and forced at 1.7 Hz; 0.5 Hz undamped.
-std::vector<Oscillator> oscillators() {
-  Oscillator a;
-  a.omega = 2 * kPi * 1.0;
-  a.zeta = 0.05;
-  a.q0 = 1.0;
-  Oscillator b;
-  b.omega = 2 * kPi * 3.0;
-  b.zeta = 0.2;
-  b.force = 10.0;
-  b.force_freq = 2 * kPi * 1.7;
-  b.v0 = 0.5;
-  Oscillator c;
-  c.omega = 2 * kPi * 0.5;
-  c.q0 = -0.3;
-  c.v0 = 1.0;
-  return {a, b, c};
-}
+using test::oscillators;
 
 struct Errors {
   double q = 0.0, v = 0.0;  // max over outputs of max-norm errors

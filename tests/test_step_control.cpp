@@ -27,19 +27,8 @@ using test::SdofProblem;
 
 constexpr double kPi = 3.14159265358979323846;
 
-std::vector<Oscillator> oscillators() {
-  Oscillator a;
-  a.omega = 2 * kPi * 1.0;
-  a.zeta = 0.05;
-  a.q0 = 1.0;
-  Oscillator b;
-  b.omega = 2 * kPi * 3.0;
-  b.zeta = 0.2;
-  b.force = 10.0;
-  b.force_freq = 2 * kPi * 1.7;
-  b.v0 = 0.5;
-  return {a, b};
-}
+// the first two of the standard set: 1 Hz lightly damped free, 3 Hz damped and forced
+std::vector<Oscillator> oscillators() { return test::oscillators(2); }
 
 struct RunResult {
   double err = 0.0;  // max over outputs of |q - q_exact|_inf
