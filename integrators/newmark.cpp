@@ -112,7 +112,11 @@ bool NewmarkIntegrator::step(double t, double h) {
       cb_last_ = cb;
     }
   }
-  const double tol_scale = s_.step_control == "adaptive" ? 0.1 : 1.0;
+  const bool adaptive = s_.step_control == "adaptive";
+  const double tol_scale = adaptive ? 0.1 : 1.0;
+  // adaptive steps estimate their error from differences of accelerations: the
+  // iteration error must stay below it, so the balance is tightened to rtol / 10
+  const double btol = adaptive ? std::min(s_.balance_tol, 0.1 * s_.rtol) : s_.balance_tol;
   Vec& a = a1_;
   a = a_;  // predictor
   const double a_norm = a_.norm();
@@ -141,22 +145,21 @@ bool NewmarkIntegrator::step(double t, double h) {
       // acceleration crosses zero is measured against the one it starts with
       const double inertia = am == 0.0 ? a.norm() : ((1.0 - am) * a + am * a_).norm();
       const double eps = rn / std::max({inertia, a_norm, s_.atol});
-      if (eps <= s_.balance_tol) {
+      if (eps <= btol) {
         stats_.max_step_iterations = std::max<long>(stats_.max_step_iterations, k);
         return true;  // balanced: (q1_, v1_, a1_, f1_) consistent
       }
       if (k >= s_.max_iterations)
-        return fail("balance error " + format_number(eps) + " > balance_tol " +
-                        format_number(s_.balance_tol),
+        return fail("balance error " + format_number(eps) + " > balance_tol " + format_number(btol),
                     t1, h, k);
       // the paper's fixed point contracts linearly: once the rate is known, give up
       // on a step that cannot balance within max_iterations (sub-steps are cheaper)
       if (it_ == Iteration::FixedPoint && k >= 4) {
         const double rho = std::cbrt(rn / rnorms_[static_cast<std::size_t>(k - 3)]);
-        const double needed = rho < 1.0 ? std::log(eps / s_.balance_tol) / -std::log(rho) : 1e300;
+        const double needed = rho < 1.0 ? std::log(eps / btol) / -std::log(rho) : 1e300;
         if (k + needed > 1.5 * s_.max_iterations)
           return fail("balance error " + format_number(eps) + " > balance_tol " +
-                          format_number(s_.balance_tol) + " and would not fall below it within " +
+                          format_number(btol) + " and would not fall below it within " +
                           "max_iterations = " + std::to_string(s_.max_iterations),
                       t1, h, k);
       }

@@ -30,8 +30,9 @@
 //   newton          full Newton: K, C and S at every iterate.
 // Convergence:
 //   balance (linear-acceleration): eps = ||R||_2 / max(||(1 - alpha_m) a + alpha_m a_n||_2,
-//     ||a_n||_2, atol) <= balance_tol, checked on the iterate before an update, so the
-//     accepted state is exactly balanced to that tolerance (the paper's 0.1 %);
+//     ||a_n||_2, atol) <= balance_tol (min(balance_tol, rtol / 10) with adaptive
+//     steps, whose error estimate differentiates a), checked on the iterate before
+//     an update, so the accepted state is balanced to that tolerance (the paper's 0.1 %);
 //   increment (generalized-alpha): ||delta a||_inf <= tol (rtol ||a||_inf + atol),
 //     tol = 1 (0.1 with adaptive steps), after the update; f_{n+1} is then taken
 //     from R = 0 itself, so the discrete equations hold exactly.
