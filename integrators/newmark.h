@@ -30,12 +30,16 @@
 //   newton          full Newton: K, C and S at every iterate.
 // Convergence:
 //   balance (linear-acceleration): eps = ||R||_2 / max(||(1 - alpha_m) a + alpha_m a_n||_2,
-//     ||a_n||_2, atol) <= balance_tol (min(balance_tol, rtol / 10) with adaptive
-//     steps, whose error estimate differentiates a), checked on the iterate before
-//     an update, so the accepted state is balanced to that tolerance (the paper's 0.1 %);
-//   increment (generalized-alpha): ||delta a||_inf <= tol (rtol ||a||_inf + atol),
-//     tol = 1 (0.1 with adaptive steps), after the update; f_{n+1} is then taken
-//     from R = 0 itself, so the discrete equations hold exactly.
+//     ||a_n||_2, atol) <= balance_tol, checked on the iterate before an update, so
+//     the accepted state is balanced to that tolerance (the paper's 0.1 %);
+//   increment (generalized-alpha): ||delta a||_inf <= rtol ||a||_inf + atol after
+//     the update; f_{n+1} is then taken from R = 0 itself, so the discrete
+//     equations hold exactly;
+//   adaptive steps (both methods): the q, v changes of the last update,
+//     (beta h^2, gamma h) delta a, below 0.1 in the weighted RMS norm of the
+//     error test (as SUNDIALS' Newton tests in the error-test norm), then as
+//     increment. The error estimate differences accelerations: an iteration
+//     error measured any other way made the step control chase it.
 //
 // Local error estimates (for step_control = adaptive), from Taylor expansion of
 // the step about t_n with a_n ~ qdd(t_n) + (alpha_m - alpha_f) h qddd:
@@ -79,6 +83,8 @@ class NewmarkIntegrator : public FixedStepIntegrator {
   void factorize(const SpMat& K, const SpMat& C, double h);
   bool fail(const std::string& why, double t1, double h, int iterations);
   std::string contraction_advice(double h) const;
+  // weighted RMS norm (error-test weights) of the q, v changes of the last update
+  double update_norm(double h) const;
   void anderson_update(Vec& a, int k);
 
   Parameters par_;
