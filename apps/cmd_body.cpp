@@ -45,13 +45,21 @@ int cmd_body(const std::vector<std::string>& args) {
     return 1;
   }
   if (vm["kind"].as<std::string>() != "truss")
-    throw InputError("evas body: unknown body kind '" + vm["kind"].as<std::string>() +
-                     "' (known: truss)");
+    throw InputError("unknown body kind '" + vm["kind"].as<std::string>() + "' (known: truss)");
   if (vm.count("origin")) {
     origin = vm["origin"].as<std::vector<double>>();
     if (origin.size() != 3) throw InputError("--origin needs 3 values");
   }
   if (opt.num_elastic < 0) throw InputError("--elastic must be >= 0");
+  const long nodes = 4L * (spec.segments + 1), dof = 3 * nodes;
+  if (opt.num_elastic > dof - 6 || opt.num_elastic > kMaxGeneratedModes)
+    throw InputError("--elastic " + std::to_string(opt.num_elastic) + ": the truss has " +
+                     std::to_string(dof - 6) + " elastic modes, and at most " +
+                     std::to_string(kMaxGeneratedModes) + " are kept");
+  if (opt.num_elastic == 0 && dof > kMaxDenseDof)
+    throw InputError("--elastic 0 (all modes) needs the dense eigen-solver, limited to " +
+                     std::to_string(kMaxDenseDof) + " DOF; the truss has " + std::to_string(dof) +
+                     ": give --elastic K");
   if (opt.damping_ratio < 0.0) throw InputError("--damping-ratio must be >= 0");
   spec.origin = Vec3(origin[0], origin[1], origin[2]);
   opt.keep_rigid = !vm.count("no-rigid");

@@ -23,8 +23,8 @@ int cmd_spectrum(const std::vector<std::string>& args) {
       "options");
   opts.add_options()("help,h", "show this help")("channel", po::value<std::string>(),
                                                  "channel name, e.g. main1.fy")(
-      "cycles", po::value<int>(&cycles)->default_value(0),
-      "cycles analysed (0 = all whole cycles)")(
+      "cycles", po::value<int>(&cycles),
+      "cycles analysed, >= 1 (default: every whole cycle of the record)")(
       "cycle", po::value<double>(&cycle)->default_value(720.0), "cycle length [deg]")(
       "max-order", po::value<double>(&max_order)->default_value(12.0), "highest order listed")(
       "csv", po::value<std::string>(), "write order,amplitude,phase to this file");
@@ -34,6 +34,13 @@ int cmd_spectrum(const std::vector<std::string>& args) {
     std::cerr << "evas spectrum: need RESULTS.h5 and --channel NAME\n" << opts << "\n";
     return 1;
   }
+  if (vm.count("cycles") && cycles < 1)
+    throw InputError("--cycles " + std::to_string(cycles) +
+                     ": give a number of cycles >= 1 (leave it out for every whole cycle)");
+  if (!(cycle > 0.0 && cycle <= 1e6))
+    throw InputError("--cycle must be > 0 and <= 1e6 deg (720 for a four-stroke engine)");
+  if (!(max_order >= 0.0 && max_order <= 1e6))
+    throw InputError("--max-order must be >= 0 and <= 1e6");
   const std::string path = vm["results"].as<std::string>();
   const std::string name = vm["channel"].as<std::string>();
   const ResultsData d = read_results(path);

@@ -29,7 +29,7 @@ const char* kUsage =
 int main(int argc, char** argv) {
   if (argc < 2 || !std::strcmp(argv[1], "--help") || !std::strcmp(argv[1], "-h") ||
       !std::strcmp(argv[1], "help")) {
-    std::cout << kUsage;
+    (argc < 2 ? std::cerr : std::cout) << kUsage;
     return argc < 2 ? 1 : 0;
   }
   const std::string cmd = argv[1];

@@ -5,6 +5,7 @@
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <iomanip>
 #include <sstream>
@@ -14,6 +15,7 @@ namespace evas {
 namespace {
 
 constexpr double kPeriodDeg = 720.0;
+constexpr double kAtmosphere = 101325.0;  // [Pa], lowest gauge pressure (vacuum)
 constexpr double kDegPerRad = 180.0 / M_PI;
 
 std::string lower(std::string s) {
@@ -55,6 +57,10 @@ void validate(std::vector<double>& a, std::vector<double>& p, std::vector<int>* 
   for (std::size_t k = 0; k < a.size(); ++k) {
     if (!std::isfinite(a[k])) throw InputError(at(k) + ": crank angle is not finite");
     if (!std::isfinite(p[k])) throw InputError(at(k) + ": pressure is not finite");
+    if (std::abs(p[k]) > PressureTable::kMaxPressure)
+      throw InputError(at(k) + ": pressure " + fmt(p[k]) + " Pa is beyond the limit of " +
+                       fmt(PressureTable::kMaxPressure) +
+                       " Pa (1e5 bar) for a cylinder pressure: wrong unit or corrupt table?");
   }
   if (a.size() >= 2 && std::abs(a.back() - (a.front() + kPeriodDeg)) < 1e-9) {
     // Optional closing row repeating the first point one period later.
@@ -110,9 +116,24 @@ PressureTable::PressureTable(std::vector<double> angle_deg, std::vector<double> 
 }
 
 PressureTable PressureTable::read(const std::string& path, double max_gap_deg) {
+  // Size and kind before reading: a device or pipe (/dev/zero) never ends.
+  std::error_code ec;
+  const auto st = std::filesystem::status(path, ec);
+  if (ec || !std::filesystem::exists(st))
+    throw InputError(path + ": cannot open the pressure table (no such file)");
+  if (!std::filesystem::is_regular_file(st))
+    throw InputError(path + ": the pressure table is not a regular file (a folder, device or " +
+                     "pipe); give a text file");
+  const auto bytes = std::filesystem::file_size(path, ec);
+  if (!ec && bytes > static_cast<std::uintmax_t>(kMaxFileBytes))
+    throw InputError(path + ": the pressure table is " + std::to_string(bytes) +
+                     " bytes, more than the limit of " + std::to_string(kMaxFileBytes) +
+                     " bytes (64 MiB)");
   std::ifstream in(path);
   if (!in) throw InputError(path + ": cannot open the pressure table");
   double scale = 0.0;  // Pa per file unit; 0 until the unit header is seen
+  bool gauge = false;  // "# unit: bar gauge": relative to the atmosphere
+  std::string unit;    // as written, for messages
   std::vector<double> a, p;
   std::vector<int> lines;
   std::string line;
@@ -129,9 +150,15 @@ PressureTable PressureTable::read(const std::string& path, double max_gap_deg) {
         if (colon == std::string::npos) colon = comment.find('=');
         if (colon == std::string::npos)
           throw InputError(here + ": unit header must read '# unit: bar' (or kPa, MPa, Pa)");
-        const std::string u = lower(trim(comment.substr(colon + 1)));
+        std::string u = lower(trim(comment.substr(colon + 1)));
         if (!a.empty())
           throw InputError(here + ": the unit header must come before the first data row");
+        for (const std::string& g : {std::string(" gauge"), std::string(" (gauge)")})
+          if (u.size() > g.size() && u.compare(u.size() - g.size(), g.size(), g) == 0) {
+            gauge = true;
+            u = trim(u.substr(0, u.size() - g.size()));
+          }
+        unit = trim(comment.substr(colon + 1)).substr(0, u.size());  // without "gauge"
         if (u == "bar")
           scale = 1e5;
         else if (u == "kpa")
@@ -142,7 +169,7 @@ PressureTable PressureTable::read(const std::string& path, double max_gap_deg) {
           scale = 1.0;
         else
           throw InputError(here + ": unknown pressure unit '" + trim(comment.substr(colon + 1)) +
-                           "' (expected bar, kPa, MPa or Pa)");
+                           "' (expected bar, kPa, MPa or Pa, optionally followed by 'gauge')");
       }
       line = line.substr(0, hash);
     }
@@ -172,8 +199,21 @@ PressureTable PressureTable::read(const std::string& path, double max_gap_deg) {
       throw InputError(here +
                        ": data before the unit header; start the file with '# unit: bar' "
                        "(or kPa, MPa, Pa)");
+    const double pa = v[1] * scale;
+    if (std::abs(pa) > kMaxPressure)
+      throw InputError(here + ": pressure " + tok[1] + " " + unit + " (" + fmt(pa) +
+                       " Pa) is beyond the limit of " + fmt(kMaxPressure) +
+                       " Pa (1e5 bar) for a cylinder pressure: wrong unit or corrupt table?");
+    if (!gauge && pa < 0.0)
+      throw InputError(here + ": pressure " + tok[1] + " " + unit +
+                       " is negative, but the table holds absolute pressures (write '# unit: " +
+                       unit + " gauge' for pressures relative to the atmosphere)");
+    if (gauge && pa < -kAtmosphere)
+      throw InputError(here + ": gauge pressure " + tok[1] + " " + unit +
+                       " is below vacuum (-1 atm = -101325 Pa): the absolute pressure would be "
+                       "negative");
     a.push_back(v[0]);
-    p.push_back(v[1] * scale);
+    p.push_back(pa);
     lines.push_back(no);
   }
   if (a.empty()) throw InputError(path + ": no data rows in the pressure table");

@@ -12,14 +12,19 @@
 // Pa; slopes in Pa/rad.
 //
 // Text file format (docs/elements-piston-motor.md):
-//     # unit: bar            <- required before the first data line: bar, kPa, MPa or Pa
+//     # unit: bar            <- required before the first data line: bar, kPa, MPa or Pa,
+//                               optionally followed by "gauge" (pressures relative to
+//                               the atmosphere; absolute otherwise)
 //     # any other comment
 //     0.0    1.85            <- crank_angle_deg  pressure, any spaces/tabs
 //     0.5    1.86
 //     ...
 // Angles strictly increasing, the first in [0, max_gap], the last below 720
 // (a final row at first + 720 is accepted if its pressure repeats the first),
-// no spacing (wrap-around included) above max_gap.
+// no spacing (wrap-around included) above max_gap. Absolute pressures must not
+// be negative, gauge pressures not below -1 atm (-101325 Pa); no pressure may
+// exceed kMaxPressure in magnitude. The file must be a regular file of at most
+// kMaxFileBytes (a device or pipe such as /dev/zero is refused before reading).
 #pragma once
 
 #include <string>
@@ -33,6 +38,10 @@ class PressureTable {
  public:
   /// Largest accepted spacing between table angles (wrap-around included) [deg].
   static constexpr double kDefaultMaxGap = 10.0;
+  /// Largest accepted |pressure| [Pa] (1e5 bar): anything above is a wrong unit or a corrupt table.
+  static constexpr double kMaxPressure = 1e10;
+  /// Largest accepted table file [bytes] (64 MiB).
+  static constexpr long long kMaxFileBytes = 64LL << 20;
 
   PressureTable() = default;
   /// From points (angles in deg, pressures in Pa). `where` names the source in

@@ -1,6 +1,7 @@
 #include "io/body_file.h"
 
 #include <cmath>
+#include <cstdio>
 #include <set>
 
 #include "io/hdf5_util.h"
@@ -30,6 +31,71 @@ void expect_finite(const std::string& name, const std::vector<double>& v) {
     if (!std::isfinite(v[i]))
       throw h5::Failure("dataset '" + name + "' has a non-finite value at flat index " +
                         std::to_string(i));
+}
+
+// Limits checked before a dataset is read, so that a corrupt or hostile file
+// is refused with a message instead of an allocation failure.
+constexpr long double kMaxValues = 2147483647.0L;  // per dataset: Eigen's int indices
+// Deflate cannot shrink data by more than about 1032:1; a dataset that declares
+// more bytes than that over what the file stores for it is truncated or forged.
+constexpr long double kMaxCompression = 1100.0L;
+constexpr long double kSmallBytes = 65536.0L;  // below this no storage check
+
+std::string bytes_text(long double b) {
+  char buf[64];
+  if (b >= 1e6L)
+    std::snprintf(buf, sizeof buf, "%.3Lg MB", b / 1e6L);
+  else
+    std::snprintf(buf, sizeof buf, "%.0Lf bytes", b);
+  return buf;
+}
+
+// Shape of a dataset, refused when it declares more values than the limit or
+// more than the file holds for it. Nothing is read.
+std::vector<hsize_t> checked_dims(hid_t file, const std::string& name) {
+  if (!h5::exists(file, name)) throw h5::Failure("dataset '" + name + "' is missing");
+  h5::Handle d(H5Dopen2(file, name.c_str(), H5P_DEFAULT), H5Dclose);
+  if (!d.valid()) throw h5::Failure("dataset '" + name + "' cannot be opened (not a dataset?)");
+  h5::Handle space(H5Dget_space(d), H5Sclose);
+  const int rank = space.valid() ? H5Sget_simple_extent_ndims(space) : -1;
+  if (rank < 0 || rank > 4)
+    throw h5::Failure("dataset '" + name + "' has an unreadable shape (rank " +
+                      std::to_string(rank) + ")");
+  std::vector<hsize_t> dims(static_cast<std::size_t>(rank));
+  if (rank > 0) H5Sget_simple_extent_dims(space, dims.data(), nullptr);
+  long double total = 1.0L;
+  for (hsize_t x : dims) total *= static_cast<long double>(x);
+  if (total > kMaxValues) {
+    char buf[48];
+    std::snprintf(buf, sizeof buf, "%.4Lg", total);
+    throw h5::Failure("dataset '" + name + "' declares shape " + shape_text(dims) + ", " + buf +
+                      " values, more than the limit of 2147483647 values per dataset (corrupt "
+                      "file?)");
+  }
+  h5::Handle type(H5Dget_type(d), H5Tclose);
+  const long double bytes = total * (type.valid() ? H5Tget_size(type) : 8);
+  const long double stored = static_cast<long double>(H5Dget_storage_size(d));
+  if (bytes > kSmallBytes && bytes > kMaxCompression * stored)
+    throw h5::Failure("dataset '" + name + "' declares shape " + shape_text(dims) + " (" +
+                      bytes_text(bytes) + ") but the file stores only " + bytes_text(stored) +
+                      " for it: the file is truncated or corrupt");
+  return dims;
+}
+
+// Reads a dataset after checked_dims; with `want`, a shape other than `want`
+// is refused before reading.
+std::vector<double> read_doubles(hid_t file, const std::string& name, std::vector<hsize_t>& dims,
+                                 const std::vector<hsize_t>* want = nullptr) {
+  dims = checked_dims(file, name);
+  if (want) expect_shape(name, dims, *want);
+  return h5::read_doubles(file, name, dims);
+}
+
+std::vector<long long> read_int64s(hid_t file, const std::string& name, std::vector<hsize_t>& dims,
+                                   const std::vector<hsize_t>* want = nullptr) {
+  dims = checked_dims(file, name);
+  if (want) expect_shape(name, dims, *want);
+  return h5::read_int64s(file, name, dims);
 }
 
 bool is_diagonal(const SpMat& M) {
@@ -128,15 +194,13 @@ void read_stored(hid_t file, ModalBody& body) {
   const Eigen::Index in = static_cast<Eigen::Index>(n);
   if (h5::exists(file, "/invariants")) {
     auto inv = std::make_shared<ModalInvariants>();
-    const std::vector<double> S = h5::read_doubles(file, "/invariants/S", dims);
-    expect_shape("/invariants/S", dims, {3, n});
+    const std::vector<hsize_t> wS = {3, n}, wp = {3, 3, n}, wM = {3, 3, n, n};
+    const std::vector<double> S = read_doubles(file, "/invariants/S", dims, &wS);
     expect_finite("/invariants/S", S);
     inv->S = Eigen::Map<const RowMat>(S.data(), 3, in);
-    const std::vector<double> p = h5::read_doubles(file, "/invariants/p", dims);
-    expect_shape("/invariants/p", dims, {3, 3, n});
+    const std::vector<double> p = read_doubles(file, "/invariants/p", dims, &wp);
     expect_finite("/invariants/p", p);
-    const std::vector<double> M = h5::read_doubles(file, "/invariants/M", dims);
-    expect_shape("/invariants/M", dims, {3, 3, n, n});
+    const std::vector<double> M = read_doubles(file, "/invariants/M", dims, &wM);
     expect_finite("/invariants/M", M);
     for (int a = 0; a < 3; ++a)
       for (int b = 0; b < 3; ++b) {
@@ -150,8 +214,7 @@ void read_stored(hid_t file, ModalBody& body) {
     MassProperties mp;
     auto read = [&](const std::string& name, const std::vector<hsize_t>& shape) {
       const std::string path = "/mass_properties/" + name;
-      std::vector<double> v = h5::read_doubles(file, path, dims);
-      expect_shape(path, dims, shape);
+      std::vector<double> v = read_doubles(file, path, dims, &shape);
       expect_finite(path, v);
       return v;
     };
@@ -204,7 +267,7 @@ ModalBody read_body(hid_t file) {
 
   // Nodes.
   std::vector<hsize_t> dims;
-  const std::vector<long long> ids = h5::read_int64s(file, "/nodes/ids", dims);
+  const std::vector<long long> ids = read_int64s(file, "/nodes/ids", dims);
   if (dims.size() != 1)
     throw h5::Failure("dataset '/nodes/ids' has shape " + shape_text(dims) + ", expected (N,)");
   const hsize_t N = dims[0];
@@ -215,8 +278,8 @@ ModalBody read_body(hid_t file) {
       if (!seen.insert(id).second)
         throw h5::Failure("dataset '/nodes/ids' repeats node id " + std::to_string(id));
   }
-  const std::vector<double> xyz = h5::read_doubles(file, "/nodes/coordinates", dims);
-  expect_shape("/nodes/coordinates", dims, {N, 3});
+  const std::vector<hsize_t> w_xyz = {N, 3}, w_N = {N}, w_N1 = {N + 1};
+  const std::vector<double> xyz = read_doubles(file, "/nodes/coordinates", dims, &w_xyz);
   expect_finite("/nodes/coordinates", xyz);
   body.s = Eigen::Map<const RowMat>(xyz.data(), static_cast<Eigen::Index>(N), 3);
 
@@ -228,10 +291,12 @@ ModalBody read_body(hid_t file) {
     if (body.full_num_nodes < static_cast<long>(N))
       throw h5::Failure("attribute 'full_num_nodes' is " + std::to_string(body.full_num_nodes) +
                         ", less than the " + std::to_string(N) + " nodes stored");
+  } else if (h5::exists(file, "/mass/lumped") && h5::exists(file, "/mass/consistent")) {
+    throw h5::Failure(
+        "both '/mass/lumped' and '/mass/consistent' are present: give exactly one mass matrix");
   } else if (h5::exists(file, "/mass/lumped")) {
     body.mass.resize(iN, iN);
-    const std::vector<double> m = h5::read_doubles(file, "/mass/lumped", dims);
-    expect_shape("/mass/lumped", dims, {N});
+    const std::vector<double> m = read_doubles(file, "/mass/lumped", dims, &w_N);
     expect_finite("/mass/lumped", m);
     std::vector<Triplet> trips;
     for (int i = 0; i < iN; ++i) {
@@ -243,14 +308,13 @@ ModalBody read_body(hid_t file) {
     body.mass.setFromTriplets(trips.begin(), trips.end());
   } else if (h5::exists(file, "/mass/consistent")) {
     body.mass.resize(iN, iN);
-    const std::vector<long long> indptr = h5::read_int64s(file, "/mass/consistent/indptr", dims);
-    expect_shape("/mass/consistent/indptr", dims, {N + 1});
-    const std::vector<long long> indices = h5::read_int64s(file, "/mass/consistent/indices", dims);
+    const std::vector<long long> indptr = read_int64s(file, "/mass/consistent/indptr", dims, &w_N1);
+    const std::vector<long long> indices = read_int64s(file, "/mass/consistent/indices", dims);
     if (dims.size() != 1)
       throw h5::Failure("dataset '/mass/consistent/indices' must be one-dimensional");
     const hsize_t nnz = dims[0];
-    const std::vector<double> values = h5::read_doubles(file, "/mass/consistent/values", dims);
-    expect_shape("/mass/consistent/values", dims, {nnz});
+    const std::vector<hsize_t> w_nnz = {nnz};
+    const std::vector<double> values = read_doubles(file, "/mass/consistent/values", dims, &w_nnz);
     expect_finite("/mass/consistent/values", values);
     if (indptr[0] != 0 || indptr[N] != static_cast<long long>(nnz))
       throw h5::Failure("dataset '/mass/consistent/indptr' must start at 0 and end at " +
@@ -275,24 +339,22 @@ ModalBody read_body(hid_t file) {
   body.mass.makeCompressed();
 
   // Modes.
-  const std::vector<double> lambda = h5::read_doubles(file, "/modes/eigenvalues", dims);
+  const std::vector<double> lambda = read_doubles(file, "/modes/eigenvalues", dims);
   if (dims.size() != 1)
     throw h5::Failure("dataset '/modes/eigenvalues' has shape " + shape_text(dims) +
                       ", expected (n,)");
   const hsize_t n = dims[0];
   expect_finite("/modes/eigenvalues", lambda);
   body.eigenvalues = Eigen::Map<const Vec>(lambda.data(), static_cast<Eigen::Index>(n));
-  const std::vector<double> shapes = h5::read_doubles(file, "/modes/shapes", dims);
-  expect_shape("/modes/shapes", dims, {3 * N, n});
+  const std::vector<hsize_t> w_shapes = {3 * N, n}, w_n = {n};
+  const std::vector<double> shapes = read_doubles(file, "/modes/shapes", dims, &w_shapes);
   expect_finite("/modes/shapes", shapes);
   body.modes = Eigen::Map<const RowMat>(shapes.data(), static_cast<Eigen::Index>(3 * N),
                                         static_cast<Eigen::Index>(n));
-  const std::vector<double> damping = h5::read_doubles(file, "/modes/damping", dims);
-  expect_shape("/modes/damping", dims, {n});
+  const std::vector<double> damping = read_doubles(file, "/modes/damping", dims, &w_n);
   expect_finite("/modes/damping", damping);
   body.damping = Eigen::Map<const Vec>(damping.data(), static_cast<Eigen::Index>(n));
-  const std::vector<long long> kinds = h5::read_int64s(file, "/modes/kind", dims);
-  expect_shape("/modes/kind", dims, {n});
+  const std::vector<long long> kinds = read_int64s(file, "/modes/kind", dims, &w_n);
   for (hsize_t k = 0; k < n; ++k) {
     if (kinds[k] != 0 && kinds[k] != 1)
       throw h5::Failure("dataset '/modes/kind' has value " + std::to_string(kinds[k]) +
@@ -306,12 +368,16 @@ ModalBody read_body(hid_t file) {
     std::set<long> known(body.node_ids.begin(), body.node_ids.end());
     for (const std::string& name : h5::list_links(g)) {
       const std::string path = "/sets/" + name;
-      const std::vector<long long> set = h5::read_int64s(file, path, dims);
+      const std::vector<long long> set = read_int64s(file, path, dims);
       if (dims.size() != 1) throw h5::Failure("dataset '" + path + "' must be one-dimensional");
-      for (long long id : set)
+      std::set<long long> in_set;
+      for (long long id : set) {
         if (!known.count(id))
           throw h5::Failure("dataset '" + path + "' names node " + std::to_string(id) +
                             ", which is not in '/nodes/ids'");
+        if (!in_set.insert(id).second)
+          throw h5::Failure("dataset '" + path + "' repeats node id " + std::to_string(id));
+      }
       body.node_sets[name].assign(set.begin(), set.end());
     }
   }

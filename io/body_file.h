@@ -29,7 +29,12 @@ void write_body_file(const std::string& path, const ModalBody& body);
 
 /// Reads and validates a modal-body file (version 1 or 2); sets body.source to
 /// `path`. Throws InputError naming the file and the dataset or attribute that
-/// is missing or malformed.
+/// is missing or malformed. Before a dataset is read its declared shape is
+/// checked against a limit (2^31 - 1 values) and against the bytes the file
+/// stores for it (a truncated or forged file is refused, never allocated);
+/// both a lumped and a consistent mass, and repeated ids in a node set, are
+/// refused. The modal contract (orthonormal modes, rigid modes rigid, ...) is
+/// checked separately: solver/modal_contract.h (scenes and `evas info` apply it).
 ModalBody read_body_file(const std::string& path);
 
 }  // namespace evas

@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <set>
 #include <sstream>
@@ -39,6 +40,25 @@ std::string trim(const std::string& s) {
   if (line > 0) os << ":" << line;
   os << ": " << what;
   throw InputError(os.str());
+}
+
+/// Largest accepted CalculiX file (4 GiB) and GENERATE range (entries).
+constexpr std::uintmax_t kMaxFileBytes = 4ull << 30;
+constexpr long kMaxGenerate = 10000000;
+
+/// Refuses, before opening, a missing path, anything but a regular file (a
+/// device or pipe such as /dev/zero never ends) and a file above the limit.
+void check_input_file(const std::string& path) {
+  std::error_code ec;
+  const auto st = std::filesystem::status(path, ec);
+  if (ec || !std::filesystem::exists(st)) fail_at(path, 0, "cannot open the file (no such file)");
+  if (!std::filesystem::is_regular_file(st))
+    fail_at(path, 0, "not a regular file (a folder, device or pipe)");
+  const auto bytes = std::filesystem::file_size(path, ec);
+  if (!ec && bytes > kMaxFileBytes)
+    fail_at(path, 0,
+            "the file is " + std::to_string(bytes) + " bytes, more than the limit of " +
+                std::to_string(kMaxFileBytes) + " bytes (4 GiB)");
 }
 
 std::vector<std::string> split_commas(const std::string& s) {
@@ -114,7 +134,8 @@ int nodes_per_element(const std::string& type) {
 struct InpParser {
   InpMesh mesh;
   std::unordered_map<long, std::vector<long>> element_nodes;
-  std::set<std::string> explicit_elsets;  // named by *ELSET
+  std::unordered_map<long, std::pair<std::string, long>> element_where;  // file, line
+  std::set<std::string> explicit_elsets;                                 // named by *ELSET
 
   enum class Mode { None, Node, Element, Nset, Elset };
   Mode mode = Mode::None;
@@ -161,6 +182,7 @@ struct InpParser {
     block->ids.push_back(vals[0]);
     block->nodes.emplace_back(vals.begin() + 1, vals.end());
     element_nodes[vals[0]] = block->nodes.back();
+    element_where[vals[0]] = {file, pending_line};
     if (!block->elset.empty()) mesh.element_sets[block->elset].push_back(vals[0]);
   }
 
@@ -181,6 +203,10 @@ struct InpParser {
             fail_at(
                 file, ln,
                 "node " + std::to_string(id) + ": coordinate '" + tok[a + 1] + "' is not a number");
+          if (!std::isfinite(x[a]))
+            fail_at(
+                file, ln,
+                "node " + std::to_string(id) + ": coordinate '" + tok[a + 1] + "' is not finite");
         }
         if (mesh.index.count(id))
           fail_at(file, ln, "node " + std::to_string(id) + " defined twice");
@@ -217,7 +243,20 @@ struct InpParser {
           }
           if (n < 2 || v[2] <= 0 || v[1] < v[0])
             fail_at(file, ln, "GENERATE needs 'first, last[, step]' with first <= last, step > 0");
-          for (long i = v[0]; i <= v[1]; i += v[2]) dst.push_back(i);
+          // v[1] >= v[0], v[2] > 0; in long double, so that no range overflows
+          const long double span = static_cast<long double>(v[1]) - v[0];
+          const long double want = span / v[2] + 1.0L + static_cast<long double>(dst.size());
+          if (want > kMaxGenerate) {
+            char buf[40];
+            std::snprintf(buf, sizeof buf, "%.4Lg", span / v[2] + 1.0L);
+            fail_at(file, ln,
+                    "GENERATE " + std::to_string(v[0]) + ", " + std::to_string(v[1]) + ", " +
+                        std::to_string(v[2]) + " gives " + buf +
+                        " entries, more than the limit of " + std::to_string(kMaxGenerate) +
+                        " per set");
+          }
+          const long count = static_cast<long>(span / v[2]) + 1;
+          for (long k = 0; k < count; ++k) dst.push_back(v[0] + k * v[2]);
           return;
         }
         for (const std::string& t : tok) {
@@ -241,6 +280,7 @@ struct InpParser {
 
   void read_file(const std::string& path, std::vector<std::array<double, 3>>& coords, int depth) {
     if (depth > 20) fail_at(path, 0, "*INCLUDE nested too deeply");
+    check_input_file(path);
     std::ifstream in(path);
     if (!in) fail_at(path, 0, "cannot open the file");
     std::string line;
@@ -301,6 +341,7 @@ void sort_unique(std::vector<long>& v) {
 
 /// Whole file as a string; InputError naming the file if it cannot be read.
 std::string slurp(const std::string& path) {
+  check_input_file(path);
   std::ifstream in(path, std::ios::binary);
   if (!in) fail_at(path, 0, "cannot open the file");
   std::ostringstream os;
@@ -396,10 +437,13 @@ InpMesh read_inp(const std::string& path) {
   for (const InpElementBlock& b : m.elements)
     for (std::size_t e = 0; e < b.ids.size(); ++e)
       for (long n : b.nodes[e])
-        if (!m.index.count(n))
-          fail_at(path, 0,
+        if (!m.index.count(n)) {
+          const auto w = p.element_where.find(b.ids[e]);
+          fail_at(w != p.element_where.end() ? w->second.first : path,
+                  w != p.element_where.end() ? w->second.second : 0,
                   "element " + std::to_string(b.ids[e]) + " uses node " + std::to_string(n) +
                       " that is not defined");
+        }
   return p.mesh;
 }
 
@@ -408,6 +452,7 @@ FeModel read_matrix_storage(const InpMesh& mesh, const std::string& sti, const s
   // --- equation -> (node, direction) --------------------------------------------
   std::vector<std::pair<long, int>> eqs;
   {
+    check_input_file(dof);
     std::ifstream in(dof);
     if (!in) fail_at(dof, 0, "cannot open the file");
     std::string line;
@@ -575,6 +620,7 @@ bool parse_frd_node_line(const std::string& line, long& node, std::vector<double
 }
 
 FrdModes read_frd_modes(const std::string& path) {
+  check_input_file(path);
   std::ifstream in(path);
   if (!in) fail_at(path, 0, "cannot open the file");
   FrdModes fm;
@@ -628,6 +674,9 @@ FrdModes read_frd_modes(const std::string& path) {
     long node;
     if (!parse_frd_node_line(line, node, vals) || vals.size() < 3)
       fail_at(path, ln, "DISP record: expected ' -1', node (I10) and 3 values (E12.5)");
+    for (int a = 0; a < 3; ++a)
+      if (!std::isfinite(vals[a]))
+        fail_at(path, ln, "DISP record of node " + std::to_string(node) + ": value not finite");
     std::vector<double>& col = cols.back();
     if (cols.size() == 1) {
       if (row.count(node)) fail_at(path, ln, "node " + std::to_string(node) + " listed twice");
@@ -650,6 +699,7 @@ FrdModes read_frd_modes(const std::string& path) {
 }
 
 DatModal read_dat_modal(const std::string& path) {
+  check_input_file(path);
   std::ifstream in(path);
   if (!in) fail_at(path, 0, "cannot open the file");
   std::vector<std::string> lines;
@@ -694,9 +744,13 @@ DatModal read_dat_modal(const std::string& path) {
       if (rows.empty()) fail_at(path, static_cast<long>(i + 1), "eigenvalue table is empty");
       d.eigenvalues.resize(static_cast<long>(rows.size()));
       for (std::size_t r = 0; r < rows.size(); ++r) {
-        if (static_cast<std::size_t>(rows[r][0]) != r + 1)
+        if (rows[r][0] != static_cast<double>(r + 1))
           fail_at(path, static_cast<long>(i + 1),
                   "eigenvalue table: modes are not numbered 1, 2, ...");
+        if (!std::isfinite(rows[r][1]))
+          fail_at(path, static_cast<long>(i + 1),
+                  "eigenvalue table: the eigenvalue of mode " + std::to_string(r + 1) +
+                      " is not finite");
         d.eigenvalues[static_cast<long>(r)] = rows[r][1];
       }
       got_eig = true;
@@ -781,6 +835,20 @@ ModalBody body_from_ccx_modes(const std::string& name, const FeModel& fe, const 
     elastic.col(j) = phi / std::sqrt(nrm2);
     lam_keep[j] = lam[keep[j]];
   }
+  // The .frd holds about 6 digits, so the elastic shapes are mass-orthogonal to
+  // only ~1e-7: orthogonalise them (Gram-Schmidt in frequency order, twice) so
+  // that the body meets the modal contract (solver/modal_contract.h) to round-off.
+  for (int pass = 0; pass < 2; ++pass)
+    for (Eigen::Index j = 0; j < elastic.cols(); ++j) {
+      Vec phi = elastic.col(j);
+      if (j > 0) {
+        const Vec Mphi = apply_mass(fe.Ms, phi);
+        phi -= elastic.leftCols(j) * (elastic.leftCols(j).transpose() * Mphi);
+      }
+      const double nrm2 = phi.dot(apply_mass(fe.Ms, phi).col(0));
+      if (!(nrm2 > 0.0)) fail("mode " + std::to_string(keep[j] + 1) + " repeats another mode");
+      elastic.col(j) = phi / std::sqrt(nrm2);
+    }
   return assemble_modal_body(name, fe, elastic, lam_keep, opt);
 }
 

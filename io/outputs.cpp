@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iomanip>
+#include <sstream>
 
 namespace evas {
 
@@ -9,11 +11,22 @@ namespace {
 constexpr double kDeg = 180.0 / M_PI;
 }
 
+void check_output_rows(double rows, const char* grid) {
+  if (!(rows <= kMaxOutputRows)) {
+    std::ostringstream os;
+    os << "output: the " << grid << " grid gives " << std::setprecision(3) << rows
+       << " output rows, more than the limit of " << kMaxOutputRows
+       << " (a larger step or a shorter run)";
+    throw InputError(os.str());
+  }
+}
+
 std::vector<double> crank_angle_times(const Lof& lof, double t0, double t1, double step_deg,
                                       double start_deg, bool start_given) {
   std::vector<double> times;
   const double a0 = lof.spin_angle(t0) * kDeg, a1 = lof.spin_angle(t1) * kDeg;
   if (!(step_deg > 0.0) || a1 == a0) return times;
+  check_output_rows(std::abs(a1 - a0) / step_deg, "crank-angle");
   const double dir = a1 > a0 ? 1.0 : -1.0;
   // g increases along the run; targets are g-values start, start + step, ...
   auto g = [&](double t) { return dir * lof.spin_angle(t) * kDeg; };
@@ -58,6 +71,7 @@ OutputSet::OutputSet(const OutputSpec& spec, System& system, double t_start, dou
     const double start = spec.start_given ? spec.start : t_start;
     if (!(spec.step > 0.0)) throw InputError("output: step must be > 0");
     const double span = t_end - start;
+    check_output_rows(span / spec.step, "time");
     const long count = static_cast<long>(std::floor(span / spec.step + 1e-9));
     for (long k = 0; k <= count; ++k) times_.push_back(std::min(t_end, start + k * spec.step));
   }

@@ -46,6 +46,12 @@ class OutputSet {
   std::vector<MarkerMotion> scratch_;
 };
 
+/// Most output rows a grid may give (1e8: 8 GB per 10 channels).
+constexpr double kMaxOutputRows = 1e8;
+/// Throws InputError naming the grid when `rows` (may be huge or not finite)
+/// exceeds kMaxOutputRows: checked before any time is computed.
+void check_output_rows(double rows, const char* grid);
+
 /// Times in [t0, t1] where the spin angle of `lof` (in degrees) reaches
 /// start_deg + k step_deg (start_given) or a multiple of step_deg, in the
 /// direction the angle moves. Ascending; the angle is assumed monotonic.

@@ -3,6 +3,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
+#include <climits>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -13,7 +14,9 @@
 #include "elements/registry.h"
 #include "integrators/settings.h"
 #include "io/body_file.h"
+#include "io/outputs.h"
 #include "solver/body_builder.h"
+#include "solver/modal_contract.h"
 #include "solver/truss.h"
 
 namespace evas {
@@ -21,6 +24,13 @@ namespace evas {
 namespace {
 
 using Node = YAML::Node;
+
+// Limits checked before allocating or iterating: a scene file larger than
+// this is refused before yaml-cpp parses it; lists longer than these are
+// refused before they are walked.
+constexpr std::uintmax_t kMaxSceneBytes = 16u << 20;  // 16 MiB
+constexpr std::size_t kMaxSceneItems = 100000;        // bodies, markers, elements, channels
+constexpr std::size_t kMaxListEntries = 1000000;      // numbers: node ids, weights, tables
 
 std::string join(const std::vector<std::string>& v) {
   std::string s;
@@ -99,13 +109,26 @@ class SceneReader {
     }
     return x;
   }
-  long integer(const Node& v, const std::string& item, const std::string& key, long lo) const {
+  long integer(const Node& v, const std::string& item, const std::string& key, long lo,
+               long hi = LONG_MAX) const {
     long x = 0;
     if (!v.IsScalar() || !YAML::convert<long>::decode(v, x))
       fail(v, item, "'" + key + "' must be an integer" + got(v));
     if (x < lo)
       fail(v, item, "'" + key + "' = " + std::to_string(x) + " must be >= " + std::to_string(lo));
+    if (x > hi)
+      fail(v, item,
+           "'" + key + "' = " + std::to_string(x) + " is more than the limit of " +
+               std::to_string(hi));
     return x;
+  }
+  // A list longer than `limit` is refused before it is walked.
+  void check_size(const Node& v, const std::string& item, const std::string& key,
+                  std::size_t limit = kMaxListEntries) const {
+    if (v.IsSequence() && v.size() > limit)
+      fail(v, item,
+           "'" + key + "' has " + std::to_string(v.size()) + " entries, more than the limit of " +
+               std::to_string(limit));
   }
   bool boolean(const Node& v, const std::string& item, const std::string& key) const {
     bool x = false;
@@ -127,6 +150,7 @@ class SceneReader {
   std::vector<double> numbers(const Node& v, const std::string& item,
                               const std::string& key) const {
     if (!v.IsSequence()) fail(v, item, "'" + key + "' must be a list of numbers" + got(v));
+    check_size(v, item, key);
     std::vector<double> out;
     for (const Node& x : v) out.push_back(number(x, item, key));
     return out;
@@ -196,14 +220,17 @@ Scene SceneReader::read(const Node& root) {
   const Node bodies = require(root, "bodies", item);
   if (!bodies.IsSequence() || bodies.size() == 0)
     fail(bodies, "bodies", "must be a list of at least one body");
+  check_size(bodies, "scene", "bodies", kMaxSceneItems);
   for (std::size_t i = 0; i < bodies.size(); ++i) read_body(bodies[i], i, model);
 
   if (const Node markers = root["markers"]) {
     if (!markers.IsSequence()) fail(markers, "markers", "must be a list of markers");
+    check_size(markers, "scene", "markers", kMaxSceneItems);
     for (std::size_t i = 0; i < markers.size(); ++i) read_marker(markers[i], i, model);
   }
   if (const Node elements = root["elements"]) {
     if (!elements.IsSequence()) fail(elements, "elements", "must be a list of elements");
+    check_size(elements, "scene", "elements", kMaxSceneItems);
     for (std::size_t i = 0; i < elements.size(); ++i) read_element(elements[i], i, model);
   }
   if (const Node integ = root["integrator"]) scene.integrator = read_integrator(integ);
@@ -232,7 +259,9 @@ void SceneReader::read_body(const Node& b, std::size_t i, Model& model) {
   expect_map(b, item);
   const std::string name = text(require(b, "name", item), item, "name");
   item += " '" + name + "'";
-  check_keys(b, item, {"name", "file", "generate", "modes", "damping_ratio", "lof", "initial"});
+  check_keys(
+      b, item,
+      {"name", "file", "generate", "modes", "damping_ratio", "lof", "initial", "check_tolerance"});
   for (const auto& other : model.bodies())
     if (other.name == name) fail(b["name"], item, "a body with this name is already defined");
 
@@ -243,6 +272,11 @@ void SceneReader::read_body(const Node& b, std::size_t i, Model& model) {
   if (modes) check_keys(modes, item + " modes", {"rigid", "elastic", "max_frequency"});
 
   std::shared_ptr<ModalBody> data;
+  const Node tol_node = b["check_tolerance"];
+  if (tol_node && gen)
+    fail(tol_node, item, "'check_tolerance' applies to body files ('file') only");
+  const double tolerance = tol_node ? number_in(tol_node, item, "check_tolerance", 0.0, 1.0, true)
+                                    : kModalCheckTolerance;
   if (gen) {
     data = generate_body(gen, modes, name, item, zeta, bool(zeta_node));
   } else {
@@ -255,6 +289,15 @@ void SceneReader::read_body(const Node& b, std::size_t i, Model& model) {
     } catch (const InputError& e) {
       fail(file, item, e.what());
     }
+    // The modal contract (orthonormal modes, rigid modes rigid, ...) of the
+    // file as written, before any truncation.
+    const ModalContract contract = check_modal_contract(body, tolerance);
+    if (const ModalCheck* f = contract.first_failure())
+      fail(file, item,
+           body.source + ": " + describe_failure(*f) +
+               (f->relative ? "; 'check_tolerance' (default " + number_text(kModalCheckTolerance) +
+                                  ") relaxes the relative checks"
+                            : std::string()));
     body.name = name;
     body = truncate(std::move(body), modes, item);
     if (zeta_node)
@@ -300,7 +343,8 @@ std::shared_ptr<ModalBody> SceneReader::generate_body(const Node& g, const Node&
   choice(require(g, "type", it), it, "type", {"truss-beam"});
   TrussBeamSpec spec;
   const double inf = 1e300;
-  if (g["segments"]) spec.segments = static_cast<int>(integer(g["segments"], it, "segments", 1));
+  if (g["segments"])
+    spec.segments = static_cast<int>(integer(g["segments"], it, "segments", 1, kMaxTrussSegments));
   if (g["length"]) spec.length = number_in(g["length"], it, "length", 0.0, inf, true);
   if (g["width"]) spec.width = number_in(g["width"], it, "width", 0.0, inf, true);
   if (g["youngs"]) spec.youngs = number_in(g["youngs"], it, "youngs", 0.0, inf, true);
@@ -311,16 +355,35 @@ std::shared_ptr<ModalBody> SceneReader::generate_body(const Node& g, const Node&
   BuildOptions opt;
   opt.damping_ratio = has_zeta ? zeta : 0.0;
   bool rigid_only = false;
+  const long nodes = 4L * (spec.segments + 1), dof = 3 * nodes;
+  const std::string mi = item + " modes";
   if (modes) {
-    const std::string mi = item + " modes";
     if (modes["rigid"]) opt.keep_rigid = boolean(modes["rigid"], mi, "rigid");
-    if (modes["elastic"]) {
-      opt.num_elastic = static_cast<int>(integer(modes["elastic"], mi, "elastic", 0));
-      rigid_only = opt.num_elastic == 0;
+    if (const Node el = modes["elastic"]) {
+      const long k = integer(el, mi, "elastic", 0);
+      if (k > dof - 6)
+        fail(el, mi,
+             "'elastic' = " + std::to_string(k) + ", but the generated truss has only " +
+                 std::to_string(dof - 6) + " elastic modes (" + std::to_string(nodes) +
+                 " nodes, 3 x " + std::to_string(nodes) + " - 6)");
+      if (k > kMaxGeneratedModes)
+        fail(el, mi,
+             "'elastic' = " + std::to_string(k) + " is more than the limit of " +
+                 std::to_string(kMaxGeneratedModes) + " modes of a generated body");
+      opt.num_elastic = static_cast<int>(k);
+      rigid_only = k == 0;
+      if (rigid_only) opt.num_elastic = 1;  // only the rigid basis is kept: no full solve
     }
     if (modes["max_frequency"])
       opt.max_frequency = number_in(modes["max_frequency"], mi, "max_frequency", 0.0, inf, true);
   }
+  if (opt.num_elastic == 0 && dof > kMaxDenseDof)
+    fail(modes && modes["max_frequency"] ? modes["max_frequency"] : g, modes ? mi : it,
+         "the generated truss has " + std::to_string(dof) + " DOF (" +
+             std::to_string(spec.segments) +
+             " segments); without an 'elastic' count every mode below the cut-off may be "
+             "needed, which takes the dense eigen-solver, limited to " +
+             std::to_string(kMaxDenseDof) + " DOF: give 'modes: {elastic: K}'");
   ModalBody body;
   try {
     body = build_modal_body(name, make_truss_beam(spec), opt);
@@ -356,6 +419,10 @@ ModalBody SceneReader::truncate(ModalBody body, const Node& modes, const std::st
   }
   std::stable_sort(elastic_modes.begin(), elastic_modes.end(),
                    [&](int a, int b) { return body.eigenvalues[a] < body.eigenvalues[b]; });
+  if (elastic > static_cast<long>(elastic_modes.size()) && fmax == 0.0)
+    fail(modes["elastic"], mi,
+         "'elastic' = " + std::to_string(elastic) + ", but the body file has only " +
+             std::to_string(elastic_modes.size()) + " elastic modes");
   if (elastic >= 0 && static_cast<long>(elastic_modes.size()) > elastic)
     elastic_modes.resize(static_cast<std::size_t>(elastic));
   std::vector<int> keep = rigid_modes;
@@ -394,6 +461,7 @@ Lof SceneReader::read_lof(const Node& l, const std::string& item) const {
       } else {
         if (!profile.IsSequence() || profile.size() == 0)
           fail(profile, item, "'speed_profile' must be a list of [time, speed] pairs");
+        check_size(profile, item, "speed_profile");
         for (const Node& pair : profile) {
           const auto tw = numbers(pair, item, "speed_profile", 2);
           if (!times.empty() && !(tw[0] > times.back()))
@@ -469,7 +537,16 @@ void SceneReader::read_marker(const Node& m, std::size_t i, Model& model) {
           ids = it->second;
         } else {
           if (!nodes.IsSequence()) fail(nodes, item, "'nodes' must be a list of node ids");
-          for (const Node& x : nodes) ids.push_back(integer(x, item, "nodes", -(1L << 62)));
+          check_size(nodes, item, "nodes");
+          std::set<long> seen;
+          for (const Node& x : nodes) {
+            ids.push_back(integer(x, item, "nodes", -(1L << 62)));
+            if (!seen.insert(ids.back()).second)
+              fail(x, item,
+                   "node id " + std::to_string(ids.back()) +
+                       " is listed twice in 'nodes' (each node once; use 'weights' to weight "
+                       "it)");
+          }
         }
         std::vector<double> weights;
         if (m["weights"]) weights = numbers(m["weights"], item, "weights", ids.size());
@@ -516,6 +593,7 @@ void SceneReader::read_element(const Node& e, std::size_t i, Model& model) {
   const Node markers = require(e, "markers", item);
   if (!markers.IsSequence())
     fail(markers, item, "'markers' must be a list of marker names" + got(markers));
+  check_size(markers, item, "markers", kMaxSceneItems);
   if (type->num_markers > 0 && static_cast<int>(markers.size()) != type->num_markers)
     fail(markers, item,
          "type '" + type->type + "' needs " + std::to_string(type->num_markers) + " markers, got " +
@@ -564,7 +642,9 @@ void SceneReader::read_element(const Node& e, std::size_t i, Model& model) {
     if (v.IsScalar()) {
       push(v);
     } else if (v.IsSequence()) {
+      check_size(v, item, spec.key);
       for (const Node& s : v) {
+        check_size(s, item, spec.key);
         if (s.IsSequence() && spec.kind == ParamSpec::Kind::List) {
           for (const Node& ss : s) push(ss);  // tables: rows flattened
         } else {
@@ -602,6 +682,9 @@ IntegratorSettings SceneReader::read_integrator(const Node& n) const {
     if (key == "name") continue;
     const Node v = it->second;
     if (!v.IsScalar()) fail(v, item, "'" + key + "' must be a single value" + got(v));
+    // The value's type in the scene's own words first (range checks follow).
+    for (const auto& info : integrator_settings())
+      if (info.key == key && info.kind == "number") number(v, item, key);
     try {
       set_integrator_setting(s, key, v.Scalar());
     } catch (const InputError& e) {
@@ -644,8 +727,28 @@ OutputSpec SceneReader::read_output(const Node& n, const Model& model, double t_
     if (out.start_given && (out.start < t_start || out.start > t_end))
       fail(n["start"], item, "'start' = " + number_text(out.start) + " s is outside the time span");
   }
+  // Output rows before any time is computed: a tiny step (or a huge time span)
+  // would allocate without bound.
+  {
+    double span = t_end - (out.start_given && !crank ? out.start : t_start);
+    std::string what = "s of time";
+    if (crank) {
+      const Lof& lof = model.bodies()[model.find_body(out.crank_body)].lof;
+      span = std::abs(lof.spin_angle(t_end) - lof.spin_angle(t_start)) * 180.0 / M_PI;
+      what = "deg of crank angle";
+    }
+    const double rows = span / out.step + 1.0;
+    if (!(rows <= kMaxOutputRows))
+      fail(n["step"] ? n["step"] : n, item,
+           "'step' = " + number_text(out.step) + (crank ? " deg" : " s") + " over " +
+               number_text(span) + " " + what + " gives " + number_text(rows) +
+               " output rows, more than the limit of " + number_text(kMaxOutputRows) +
+               "; use a larger 'step' or a shorter time span");
+  }
   if (const Node ch = n["channels"]) {
     if (!ch.IsSequence()) fail(ch, item, "'channels' must be a list");
+    check_size(ch, item, "channels", kMaxSceneItems);
+    std::map<std::pair<int, std::string>, std::size_t> requested;
     for (std::size_t i = 0; i < ch.size(); ++i) {
       const Node c = ch[i];
       const std::string ci = "output.channels[" + std::to_string(i) + "]";
@@ -683,6 +786,13 @@ OutputSpec SceneReader::read_output(const Node& n, const Model& model, double t_
         fail(c.begin()->second, ci,
              std::string("no ") + what + " named '" + req.name + "' (known: " + join(names) + ")");
       }
+      const auto [at, fresh] =
+          requested.emplace(std::make_pair(static_cast<int>(req.kind), req.name), i);
+      if (!fresh)
+        fail(c, ci,
+             "repeats output.channels[" + std::to_string(at->second) + "] (" +
+                 c.begin()->first.as<std::string>() + ": " + req.name +
+                 "): request each channel once");
       out.channels.push_back(req);
     }
   }
@@ -692,9 +802,35 @@ OutputSpec SceneReader::read_output(const Node& n, const Model& model, double t_
 }  // namespace
 
 Scene parse_scene(const std::string& text, const std::string& path) {
+  if (text.size() > kMaxSceneBytes)
+    throw InputError(path + ": the scene file is " + std::to_string(text.size()) +
+                     " bytes, more than the limit of " + std::to_string(kMaxSceneBytes) +
+                     " bytes (16 MiB)");
   Node root;
   try {
-    root = YAML::Load(text);
+    std::vector<Node> docs = YAML::LoadAll(text);
+    if (docs.size() > 1) {
+      // The line of the second document's start marker ('---').
+      int line = docs[1].Mark().line >= 0 ? docs[1].Mark().line + 1 : 0;
+      std::istringstream is(text);
+      int no = 0, starts = 0;
+      bool content = false;
+      for (std::string l; std::getline(is, l);) {
+        ++no;
+        if (l.rfind("---", 0) == 0) {
+          if (content || ++starts > 1) {
+            line = no;
+            break;
+          }
+        } else if (!l.empty() && l[0] != '#' && l[0] != '%' &&
+                   l.find_first_not_of(" \t\r") != std::string::npos) {
+          content = true;
+        }
+      }
+      throw InputError(path + ":" + std::to_string(line) + ": scene: a second YAML document " +
+                       "('---') is not allowed; a scene file holds one document");
+    }
+    if (!docs.empty()) root = docs.front();
   } catch (const YAML::ParserException& e) {
     throw InputError(path + ":" + std::to_string(e.mark.line + 1) +
                      ": YAML syntax error: " + e.msg);
@@ -712,6 +848,17 @@ Scene parse_scene(const std::string& text, const std::string& path) {
 }
 
 Scene read_scene(const std::string& path) {
+  std::error_code ec;
+  const auto st = std::filesystem::status(path, ec);
+  if (ec || !std::filesystem::exists(st))
+    throw InputError(path + ": cannot open the scene file (no such file)");
+  if (!std::filesystem::is_regular_file(st))
+    throw InputError(path + ": the scene is not a regular file (a folder, device or pipe)");
+  const auto bytes = std::filesystem::file_size(path, ec);
+  if (!ec && bytes > kMaxSceneBytes)
+    throw InputError(path + ": the scene file is " + std::to_string(bytes) +
+                     " bytes, more than the limit of " + std::to_string(kMaxSceneBytes) +
+                     " bytes (16 MiB)");
   std::ifstream f(path);
   if (!f) throw InputError(path + ": cannot open the scene file");
   std::stringstream ss;

@@ -12,6 +12,16 @@ OrderSpectrum order_spectrum(const std::vector<double>& theta, const std::vector
   const std::size_t n = theta.size();
   if (n != y.size()) throw InputError("order spectrum: angle and signal lengths differ");
   if (n < 3) throw InputError("order spectrum: fewer than 3 samples");
+  if (cycles < 0)
+    throw InputError("order spectrum: cycles = " + std::to_string(cycles) +
+                     " must be >= 1 (or 0 for every whole cycle)");
+  if (!(cycle_deg > 0.0) || !std::isfinite(cycle_deg))
+    throw InputError("order spectrum: the cycle length must be a positive number of degrees");
+  if (!(max_order >= 0.0) || !std::isfinite(max_order))
+    throw InputError("order spectrum: the highest order must be >= 0");
+  for (std::size_t i = 0; i < n; ++i)
+    if (!std::isfinite(theta[i]))
+      throw InputError("order spectrum: crank angle " + std::to_string(i) + " is not finite");
   const double d = theta[1] - theta[0];
   if (!(d > 0.0)) throw InputError("order spectrum: crank angles must increase");
   for (std::size_t i = 1; i < n; ++i)

@@ -23,7 +23,8 @@ struct OrderSpectrum {
 /// y: the signal at those angles. cycles = 0 uses as many whole cycles as the
 /// record holds (from its end). Orders up to max_order (0 = Nyquist).
 /// Throws InputError for a non-uniform grid, a step that does not divide the
-/// cycle, a record shorter than one cycle or non-finite samples.
+/// cycle, a record shorter than one cycle, non-finite samples, cycles < 0, a
+/// cycle length <= 0 or max_order < 0.
 OrderSpectrum order_spectrum(const std::vector<double>& theta_deg, const std::vector<double>& y,
                              int cycles = 0, double cycle_deg = 720.0, double max_order = 0.0);
 

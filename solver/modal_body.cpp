@@ -1,6 +1,7 @@
 #include "solver/modal_body.h"
 
 #include <cmath>
+#include <iomanip>
 #include <sstream>
 #include <unordered_set>
 
@@ -68,9 +69,17 @@ void ModalBody::validate() const {
   if (!s.allFinite() || !modes.allFinite() || !eigenvalues.allFinite() || !damping.allFinite())
     fail("non-finite values in coordinates, modes, eigenvalues or damping");
   for (int k = 0; k < n; ++k) {
-    if (kinds[k] == ModeKind::Elastic && eigenvalues[k] <= 0.0)
-      fail("elastic mode " + std::to_string(k) + " has eigenvalue <= 0");
-    if (damping[k] < 0.0) fail("mode " + std::to_string(k) + " has negative damping");
+    if (kinds[k] == ModeKind::Elastic && eigenvalues[k] <= 0.0) {
+      std::ostringstream os;
+      os << "elastic mode " << k << " has eigenvalue " << std::setprecision(6) << eigenvalues[k]
+         << " <= 0 (a negative eigenvalue, or a rigid mode marked elastic: kind 0 is rigid)";
+      fail(os.str());
+    }
+    if (damping[k] < 0.0) {
+      std::ostringstream os;
+      os << "mode " << k << " has negative damping " << std::setprecision(6) << damping[k];
+      fail(os.str());
+    }
   }
   const std::unordered_set<long> known(node_ids.begin(), node_ids.end());
   for (const auto& [set, ids] : node_sets)

@@ -62,7 +62,14 @@ std::vector<Bar> truss_bars(int segments) {
 }  // namespace
 
 FeModel make_truss_beam(const TrussBeamSpec& spec) {
-  if (spec.segments < 1) throw InputError("truss beam: segments must be >= 1");
+  if (spec.segments < 1)
+    throw InputError("truss beam: segments = " + std::to_string(spec.segments) + " must be >= 1");
+  if (spec.segments > kMaxTrussSegments)
+    throw InputError("truss beam: segments = " + std::to_string(spec.segments) +
+                     " is more than the limit of " + std::to_string(kMaxTrussSegments));
+  if (!std::isfinite(spec.length) || !std::isfinite(spec.width) || !std::isfinite(spec.youngs) ||
+      !std::isfinite(spec.area) || !std::isfinite(spec.density))
+    throw InputError("truss beam: length, width, youngs, area and density must be finite");
   if (!(spec.length > 0.0) || !(spec.width > 0.0) || !(spec.youngs > 0.0) || !(spec.area > 0.0) ||
       !(spec.density > 0.0))
     throw InputError("truss beam: length, width, youngs, area and density must be positive");

@@ -11,8 +11,16 @@
 
 namespace evas {
 
+/// Largest accepted `segments` (400 004 nodes, 1.2 million DOF).
+inline constexpr int kMaxTrussSegments = 100000;
+/// A generated body: every mode (no elastic count) needs the dense eigen-solver,
+/// O(DOF^2) memory and O(DOF^3) time, so at most this many DOF; and at most this
+/// many modes in any case.
+inline constexpr long kMaxDenseDof = 3000;
+inline constexpr long kMaxGeneratedModes = 1000;
+
 struct TrussBeamSpec {
-  int segments = 10;           ///< bays along x
+  int segments = 10;           ///< bays along x, 1..kMaxTrussSegments
   double length = 1.0;         ///< [m]
   double width = 0.05;         ///< side of the square cross-section [m]
   double youngs = 2.1e11;      ///< bar modulus [Pa]

@@ -7,6 +7,7 @@
 
 #include "io/outputs.h"
 #include "solver/system.h"
+#include "study/report.h"
 
 namespace evas::study {
 
@@ -16,7 +17,7 @@ SceneInfo probe_scene(const SceneSource& src) {
   OutputSet out(scene.output, sys, scene.t_start, scene.t_end);
   if (out.times().empty())
     throw InputError(scene.path + ": output: the grid has no output time in [" +
-                     std::to_string(scene.t_start) + ", " + std::to_string(scene.t_end) + "] s");
+                     gnum(scene.t_start, 6) + ", " + gnum(scene.t_end, 6) + "] s");
   SceneInfo info;
   info.name = scene.name;
   info.grid = scene.output.grid;

@@ -1,0 +1,15 @@
+// libFuzzer harness: CalculiX .dat modal tables (io/calculix.h, read_dat_modal).
+#include <cstddef>
+#include <cstdint>
+#include <string>
+
+#include "fuzz_common.h"
+#include "io/calculix.h"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  static const std::string path = (evas_fuzz::temp_dir() / "job.dat").string();
+  if (evas_fuzz::skipped(data, size)) return 0;
+  evas_fuzz::write_file(path, data, size);
+  evas_fuzz::expect_only_input_errors([&] { evas::DatModal d = evas::read_dat_modal(path); });
+  return 0;
+}
