@@ -1,4 +1,5 @@
 // evas body truss OUT.h5: generate a modal-body file of a truss beam.
+#include <algorithm>
 #include <boost/program_options.hpp>
 #include <cmath>
 #include <cstdio>
@@ -51,12 +52,12 @@ int cmd_body(const std::vector<std::string>& args) {
     if (origin.size() != 3) throw InputError("--origin needs 3 values");
   }
   if (opt.num_elastic < 0) throw InputError("--elastic must be >= 0");
-  const long nodes = 4L * (spec.segments + 1), dof = 3 * nodes;
-  if (opt.num_elastic > dof - 6 || opt.num_elastic > kMaxGeneratedModes)
+  const long nodes = 4L * (std::max(spec.segments, 1) + 1), dof = 3 * nodes;
+  if (spec.segments >= 1 && opt.num_elastic > dof - 6 || opt.num_elastic > kMaxGeneratedModes)
     throw InputError("--elastic " + std::to_string(opt.num_elastic) + ": the truss has " +
                      std::to_string(dof - 6) + " elastic modes, and at most " +
                      std::to_string(kMaxGeneratedModes) + " are kept");
-  if (opt.num_elastic == 0 && dof > kMaxDenseDof)
+  if (spec.segments >= 1 && opt.num_elastic == 0 && dof > kMaxDenseDof)
     throw InputError("--elastic 0 (all modes) needs the dense eigen-solver, limited to " +
                      std::to_string(kMaxDenseDof) + " DOF; the truss has " + std::to_string(dof) +
                      ": give --elastic K");
