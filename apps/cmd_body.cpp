@@ -53,7 +53,7 @@ int cmd_body(const std::vector<std::string>& args) {
   }
   if (opt.num_elastic < 0) throw InputError("--elastic must be >= 0");
   const long nodes = 4L * (std::max(spec.segments, 1) + 1), dof = 3 * nodes;
-  if (spec.segments >= 1 && opt.num_elastic > dof - 6 || opt.num_elastic > kMaxGeneratedModes)
+  if ((spec.segments >= 1 && opt.num_elastic > dof - 6) || opt.num_elastic > kMaxGeneratedModes)
     throw InputError("--elastic " + std::to_string(opt.num_elastic) + ": the truss has " +
                      std::to_string(dof - 6) + " elastic modes, and at most " +
                      std::to_string(kMaxGeneratedModes) + " are kept");
