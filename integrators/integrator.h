@@ -54,7 +54,7 @@ struct IntegratorStats {
   long nonlinear_iterations = 0;
   long error_test_failures = 0;
   long convergence_failures = 0;
-  long restarts = 0;  ///< re-initializations at stops that changed the state
+  long restarts = 0;        ///< re-initializations at stops that changed the state
   long refused_states = 0;  ///< trial states an element refused (RangeError), each retried
   long substeps = 0;  ///< fixed-step methods: steps retried as sub-steps after a failed iteration
   long max_step_iterations = 0;  ///< fixed-step methods: most iterations taken in one step

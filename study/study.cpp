@@ -32,7 +32,6 @@ std::string strip_keys(const std::string& label, const std::set<std::string>& ke
   return out;
 }
 
-
 const double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 bool stopped(const Options& o) { return o.stop && o.stop(); }
