@@ -1,17 +1,19 @@
 // evas run SCENE: read the scene, integrate, record results as the run goes.
 #include <boost/program_options.hpp>
 #include <chrono>
-#include <csignal>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
 #include <memory>
 
 #include "apps/commands.h"
+#include "apps/run_stop.h"
 #include "integrators/integrator.h"
 #include "integrators/settings.h"
 #include "io/outputs.h"
 #include "io/results.h"
+#include "io/run_lock.h"
 #include "io/scene.h"
 #include "solver/system.h"
 
@@ -19,24 +21,21 @@ namespace evas::cli {
 
 namespace {
 
-volatile std::sig_atomic_t g_interrupted = 0;
-
-extern "C" void on_sigint(int) {
-  g_interrupted = 1;
-  std::signal(SIGINT, SIG_DFL);  // a second Ctrl-C kills at once
-}
-
 // Progress line on stderr, redrawn at most twice a second.
 class Progress {
  public:
   Progress(bool quiet, double t0, double t1) : quiet_(quiet), t0_(t0), t1_(t1) {}
-  void update(double t, long steps, bool force = false) {
+  bool due() const {
+    return !quiet_ &&
+           std::chrono::duration<double>(std::chrono::steady_clock::now() - last_).count() >= 0.5;
+  }
+  /// h: the last step [s] (0: unknown); a collapsing step shows here first.
+  void draw(double t, long steps, double h) {
     if (quiet_) return;
-    const auto now = std::chrono::steady_clock::now();
-    if (!force && std::chrono::duration<double>(now - last_).count() < 0.5) return;
-    last_ = now;
+    last_ = std::chrono::steady_clock::now();
     const double pct = 100.0 * (t - t0_) / (t1_ - t0_);
-    std::fprintf(stderr, "\r  t = %.6g s  %5.1f %%  %ld steps   ", t, pct, steps);
+    std::fprintf(stderr, "\r  t = %.6g s  %5.1f %%  %ld steps  step %.2g s   ", t, pct, steps,
+                 std::abs(h));
     std::fflush(stderr);
     drawn_ = true;
   }
@@ -52,13 +51,46 @@ class Progress {
   std::chrono::steady_clock::time_point last_{};
 };
 
+// Without --out the scene name becomes the folder out/<name>: it must be one
+// plain path component, so that no scene writes outside out/.
+void check_folder_name(const Scene& scene) {
+  const std::string& n = scene.name;
+  std::string why;
+  if (n.empty()) why = "is empty";
+  if (n == "." || n == "..") why = "is a relative folder";
+  if (n.find('/') != std::string::npos || n.find('\\') != std::string::npos)
+    why = "contains a path separator";
+  std::string shown;
+  for (char ch : n) {
+    const unsigned char c = static_cast<unsigned char>(ch);
+    if (c < 0x20 || c == 0x7F) {
+      why = "contains a control character";
+      char buf[8];
+      std::snprintf(buf, sizeof buf, "\\x%02x", c);
+      shown += buf;
+    } else {
+      shown += ch;
+    }
+  }
+  if (!why.empty())
+    throw InputError(scene.path + ": name: '" + shown + "' " + why +
+                     " and cannot name the output folder out/<name>; use a plain name (no '/', "
+                     "'..' or control characters), or choose the folder with --out");
+}
+
 }  // namespace
 
 int cmd_run(const std::vector<std::string>& args) {
   po::options_description opts(
       "usage: evas run SCENE.yaml [options]\n\n"
       "Simulates a scene and writes DIR/results.h5 and DIR/summary.json.\n"
-      "Exit codes: 0 completed, 1 bad input, 2 the run failed (partial results kept).\n\n"
+      "Exit codes: 0 completed; 1 bad input, or DIR is in use by another run (nothing\n"
+      "written); 2 the run failed: integrator error, non-finite value, results file not\n"
+      "writable (disk full), --max-wall reached; 128+N stopped by signal N: 130 SIGINT\n"
+      "(Ctrl-C), 143 SIGTERM, 129 SIGHUP (after the current step; a second signal\n"
+      "ends the process at once). A failed or stopped run keeps its rows, writes the status "
+      "'failed: ...',\n"
+      "its statistics and DIR/summary.json.\n\n"
       "options");
   opts.add_options()("help,h", "show this help")(
       "integrator", po::value<std::string>(),
@@ -72,7 +104,10 @@ int cmd_run(const std::vector<std::string>& args) {
       "help-settings", "list every integrator setting with its default and meaning")(
       "t-end", po::value<double>(), "end time [s] (overrides the scene)")(
       "out", po::value<std::string>(), "output directory (default out/<scene name>)")(
-      "csv", "also write DIR/results.csv")("quiet,q", "no progress line");
+      "csv", "also write DIR/results.csv")(
+      "max-wall", po::value<double>(),
+      "wall-time limit [s]: the run stops with status 'failed: wall-time limit ...' "
+      "(exit 2, rows kept) when it runs longer")("quiet,q", "no progress line");
   po::variables_map vm;
   if (parse_args(args, opts, {"scene"}, vm)) return 0;
   if (vm.count("help-settings")) {
@@ -105,19 +140,28 @@ int cmd_run(const std::vector<std::string>& args) {
     if (!(scene.t_end > scene.t_start))
       throw InputError("--t-end must be after the start time " + std::to_string(scene.t_start));
   }
+  double max_wall = 0.0;
+  if (vm.count("max-wall")) {
+    max_wall = vm["max-wall"].as<double>();
+    if (!(max_wall > 0.0)) throw InputError("--max-wall must be a positive number of seconds");
+  }
   std::unique_ptr<Integrator> integ = make_integrator(set.name);
   System sys(*scene.model);
   OutputSet outputs(scene.output, sys, scene.t_start, scene.t_end);
   if (outputs.times().empty())
     throw InputError(scene.path + ": output: the grid has no output time in [" +
                      std::to_string(scene.t_start) + ", " + std::to_string(scene.t_end) + "] s");
-
+  if (!vm.count("out")) check_folder_name(scene);
   const std::filesystem::path dir = vm.count("out")
                                         ? std::filesystem::path(vm["out"].as<std::string>())
                                         : std::filesystem::path("out") / scene.name;
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);
   if (ec) throw InputError(dir.string() + ": cannot create the output directory: " + ec.message());
+  // One run per folder: refuse before anything in it is touched.
+  const RunLock lock(dir);
+  if (!lock.note().empty()) std::cerr << "evas run: warning: " << lock.note() << "\n";
+  const RunStop stop(max_wall);  // signals from here on end the run in order
   const std::string h5path = (dir / "results.h5").string();
 
   ResultsWriter::Options wopt;
@@ -138,9 +182,15 @@ int cmd_run(const std::vector<std::string>& args) {
   std::vector<double> row(outputs.size());
   std::string status = "completed";
   int code = 0;
-  g_interrupted = 0;
-  auto old_handler = std::signal(SIGINT, on_sigint);
+  // Between steps (every accepted step of every integrator): stop on
+  // request, flush rows that wait too long, show the step size.
+  integ->set_step_monitor([&](double t, double h) {
+    if (stop.due()) stop.stop(t, h);
+    writer.flush_if_due();
+    if (progress.due()) progress.draw(t, integ->stats().steps, h);
+  });
   try {
+    if (stop.due()) stop.stop(scene.t_start, 0.0);
     Vec q0, v0;
     sys.initial_state(q0, v0);
     std::vector<double> times = outputs.times();
@@ -152,27 +202,41 @@ int cmd_run(const std::vector<std::string>& args) {
     }
     integ->init(sys, scene.t_start, q0, v0, set);
     integrate(*integ, sys, scene.t_start, times, [&](double t, const Vec& q, const Vec& v) {
-      if (g_interrupted) {
-        char msg[80];
-        std::snprintf(msg, sizeof msg, "interrupted (Ctrl-C) at t = %.6g s", t);
-        throw RunError(msg);
-      }
+      if (stop.due()) stop.stop(t, integ->stats().last_step);
       outputs.values(t, q.data(), v.data(), row.data());
       writer.append(t, row);
-      progress.update(t, integ->stats().steps);
+      if (progress.due()) {
+        const IntegratorStats st = integ->stats();
+        progress.draw(t, st.steps, st.last_step);
+      }
     });
-    progress.update(writer.last_time(), integ->stats().steps, true);
+    const IntegratorStats st = integ->stats();
+    progress.draw(writer.last_time(), st.steps, st.last_step);
+  } catch (const RunStopped& e) {
+    progress.end();
+    status = std::string("failed: ") + e.what();
+    code = e.exit_code();
+    std::cerr << "evas run: FAILED: " << e.what() << "\n";
   } catch (const std::exception& e) {
     progress.end();
     status = std::string("failed: ") + e.what();
     code = 2;
     std::cerr << "evas run: FAILED: " << e.what() << "\n";
   }
-  std::signal(SIGINT, old_handler);
+  integ->set_step_monitor(nullptr);
   progress.end();
 
   const IntegratorStats stats = integ->stats();
-  writer.finish(stats, status);
+  // The results, the summary and the CSV are each written as far as they can be.
+  try {
+    writer.finish(stats, status);
+  } catch (const std::exception& e) {
+    std::cerr << "evas run: FAILED: " << e.what() << "\n";
+    if (code == 0) {
+      status = std::string("failed: ") + e.what();
+      code = 2;
+    }
+  }
   RunSummary sum;
   sum.scene = scene.name;
   sum.scene_path = scene.path;
@@ -182,17 +246,27 @@ int cmd_run(const std::vector<std::string>& args) {
   sum.status = status;
   sum.t_start = scene.t_start;
   sum.t_end = scene.t_end;
-  sum.t_reached = writer.rows() > 0 ? writer.last_time() : scene.t_start;
-  sum.rows = writer.rows();
+  sum.t_reached = writer.rows_written() > 0 ? writer.last_time_written() : scene.t_start;
+  sum.rows = writer.rows_written();
   sum.stats = stats;
   sum.channels = writer.channels();
   sum.channel_summary = writer.summary();
   const std::string json = (dir / "summary.json").string();
-  write_summary_json(json, sum);
+  try {
+    write_summary_json(json, sum);
+  } catch (const std::exception& e) {
+    std::cerr << "evas run: FAILED: " << e.what() << "\n";
+    if (code == 0) code = 2;
+  }
   std::string csv;
   if (vm.count("csv")) {
     csv = (dir / "results.csv").string();
-    export_csv(h5path, csv);
+    try {
+      export_csv(h5path, csv);
+    } catch (const std::exception& e) {
+      std::cerr << "evas run: FAILED: " << e.what() << "\n";
+      if (code == 0) code = 2;
+    }
   }
   if (!quiet || code != 0) {
     std::cerr << "evas run: " << (code ? "failed, last output" : "completed")

@@ -91,12 +91,13 @@ class CvodeIntegrator final : public Integrator {
         },
         [&] { return current_time(); },
         [&](int flag) {
-          fail(flag < 0 ? CVodeGetReturnFlagName(flag)
+          fail(flag < 0 ? sundials::flag_name(CVodeGetReturnFlagName(flag))
                         : "more than max_steps steps to reach the output");
-        });
+        },
+        [&](double t, double h) { step_done(t, h); });
     if (!exact) {
       const int flag = CVodeGetDky(mem_, tout, 0, ytmp_.get());
-      if (flag < 0) fail(CVodeGetReturnFlagName(flag));
+      if (flag < 0) fail(sundials::flag_name(CVodeGetReturnFlagName(flag)));
       get_state(ytmp_.data(), q, v);
     } else {
       get_state(y_.data(), q, v);
@@ -177,7 +178,7 @@ class CvodeIntegrator final : public Integrator {
   void check(int flag, const char* what) {
     if (flag < 0) {
       throw RunError(std::string("cvode: ") + what + " failed with " +
-                     CVodeGetReturnFlagName(flag) +
+                     sundials::flag_name(CVodeGetReturnFlagName(flag)) +
                      (last_error_.empty() ? "" : " (" + last_error_ + ")"));
     }
   }

@@ -214,6 +214,7 @@ class FixedStepIntegrator : public Integrator {
     ++stats_.steps;
     stats_.last_step = h;
     note_step(stats_, h);
+    step_done(t_, h);  // interrupts, wall-time limit, timed flushes (may throw)
   }
 
   // The interval [t_, t_ + h] with steps of h, cut into sub-steps where needed.

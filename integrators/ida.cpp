@@ -89,12 +89,13 @@ class IdaIntegrator final : public Integrator {
         },
         [&] { return current_time(); },
         [&](int flag) {
-          fail(flag < 0 ? IDAGetReturnFlagName(flag)
+          fail(flag < 0 ? sundials::flag_name(IDAGetReturnFlagName(flag))
                         : "more than max_steps steps to reach the output");
-        });
+        },
+        [&](double t, double h) { step_done(t, h); });
     if (!exact) {
       const int flag = IDAGetDky(mem_, tout, 0, ytmp_.get());
-      if (flag < 0) fail(IDAGetReturnFlagName(flag));
+      if (flag < 0) fail(sundials::flag_name(IDAGetReturnFlagName(flag)));
       get_state(ytmp_.data(), q, v);
     } else {
       get_state(y_.data(), q, v);
@@ -173,7 +174,8 @@ class IdaIntegrator final : public Integrator {
 
   void check(int flag, const char* what) {
     if (flag < 0) {
-      throw RunError(std::string("ida: ") + what + " failed with " + IDAGetReturnFlagName(flag) +
+      throw RunError(std::string("ida: ") + what + " failed with " +
+                     sundials::flag_name(IDAGetReturnFlagName(flag)) +
                      (last_error_.empty() ? "" : " (" + last_error_ + ")"));
     }
   }

@@ -11,6 +11,7 @@
 // declared once in integrators/settings.cpp.
 #pragma once
 
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -64,9 +65,20 @@ struct IntegratorStats {
   int last_order = 0;
 };
 
+/// Observer of the accepted steps of a run: called with the time reached and the
+/// step just taken [s], between steps (never from inside a solver callback).
+/// It may throw (RunError) to end the run, e.g. on an interrupt or a wall-time
+/// limit; the integrator's stats() stay valid.
+using StepMonitor = std::function<void(double t, double h)>;
+
 class Integrator {
  public:
   virtual ~Integrator() = default;
+  /// Installs the step monitor (empty: none). ida and cvode call it after every
+  /// accepted internal step (sundials::step_to); an integrator that does not
+  /// call step_done() is observed only at its outputs, by the caller's sink.
+  void set_step_monitor(StepMonitor m) { monitor_ = std::move(m); }
+  const StepMonitor& step_monitor() const { return monitor_; }
   virtual std::string name() const = 0;
   /// Prepare to integrate from t0 with q0, v0 (size n each).
   virtual void init(Problem& p, double t0, const Vec& q0, const Vec& v0,
@@ -78,6 +90,15 @@ class Integrator {
   /// Restart from a changed state at the current time (after Problem::at_stop).
   virtual void restart(double t, const Vec& q, const Vec& v) = 0;
   virtual IntegratorStats stats() const = 0;
+
+ protected:
+  /// For the integrators: report an accepted step to the monitor (if any).
+  void step_done(double t, double h) const {
+    if (monitor_) monitor_(t, h);
+  }
+
+ private:
+  StepMonitor monitor_;
 };
 
 /// Names accepted by make_integrator.

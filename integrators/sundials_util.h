@@ -15,7 +15,9 @@
 #include <sunmatrix/sunmatrix_sparse.h>
 
 #include <algorithm>
+#include <cstdlib>
 #include <exception>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -23,6 +25,13 @@
 
 namespace evas {
 namespace sundials {
+
+/// The text of a return-flag name from IDAGetReturnFlagName or
+/// CVodeGetReturnFlagName, which hand over a malloc'ed string: freed here.
+inline std::string flag_name(char* owned) {
+  const std::unique_ptr<char, void (*)(void*)> p(owned, &std::free);
+  return p ? std::string(p.get()) : std::string("unknown flag");
+}
 
 /// One SUNContext per integrator instance.
 class Context {
@@ -208,18 +217,22 @@ inline void add_segment(IntegratorStats& total, const IntegratorStats& seg) {
 /// a time towards tout (so that every step size is seen), stopping early when
 /// the solver returns at its stop time exactly at tout. `step(tret)` takes one
 /// step and returns the solver flag; `fail(flag)` reports a negative flag, or
-/// flag 0 for more than max_steps steps. Returns true when the solver's state
-/// is the solution at exactly tout (else the caller interpolates).
-template <class Step, class LastStep, class Time, class Fail>
+/// flag 0 for more than max_steps steps; `on_step(t, h)` sees every accepted
+/// step (the run's step monitor: it may throw to end the run). Returns true
+/// when the solver's state is the solution at exactly tout (else the caller
+/// interpolates).
+template <class Step, class LastStep, class Time, class Fail, class OnStep>
 bool step_to(double tout, long max_steps, int tstop_return, IntegratorStats& total, Step step,
-             LastStep last_step, Time time, Fail fail) {
+             LastStep last_step, Time time, Fail fail, OnStep on_step) {
   long steps = 0;
   for (double tn = time(); tn < tout;) {
     double tret = tn;
     const int flag = step(tret);
     if (flag < 0) fail(flag);
-    note_step(total, last_step());
+    const double h = last_step();
+    note_step(total, h);
     tn = time();
+    on_step(tn, h);
     if (flag == tstop_return && tret == tout) return true;
     if (++steps > max_steps) fail(0);
   }

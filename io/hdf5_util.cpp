@@ -9,6 +9,7 @@ namespace {
 
 constexpr hsize_t kCompressMinElements = 256;
 constexpr hsize_t kChunkElements = 16384;
+hid_t g_open_driver = -1;  // set_open_driver
 
 std::string dset_name(const std::string& name) { return "dataset '" + name + "'"; }
 std::string attr_name(const std::string& name) { return "attribute '" + name + "'"; }
@@ -131,11 +132,20 @@ Handle create_file(const std::string& path) {
   return f;
 }
 
+void set_open_driver(hid_t driver) { g_open_driver = driver; }
+
 Handle open_file(const std::string& path, bool writable) {
   const htri_t is = H5Fis_hdf5(path.c_str());
   if (is < 0) throw Failure("cannot open the file (missing or unreadable)");
   if (is == 0) throw Failure("not an HDF5 file");
-  Handle f(H5Fopen(path.c_str(), writable ? H5F_ACC_RDWR : H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose);
+  Handle fapl;
+  if (g_open_driver >= 0 && H5Iis_valid(g_open_driver) > 0) {
+    fapl = Handle(H5Pcreate(H5P_FILE_ACCESS), H5Pclose);
+    if (fapl.valid() && H5Pset_driver(fapl, g_open_driver, nullptr) < 0) fapl.reset();
+  }
+  Handle f(H5Fopen(path.c_str(), writable ? H5F_ACC_RDWR : H5F_ACC_RDONLY,
+                   fapl.valid() ? fapl.get() : H5P_DEFAULT),
+           H5Fclose);
   if (!f.valid()) throw Failure("cannot open the HDF5 file (truncated or corrupt?)");
   return f;
 }
@@ -333,18 +343,29 @@ Handle create_extendible(hid_t loc, const std::string& name, int rank, hsize_t c
 void append_rows(hid_t dset, hsize_t cols, hsize_t rows, const double* data) {
   if (rows == 0) return;
   hsize_t cur[2] = {0, 0};
+  {
+    Handle space(H5Dget_space(dset), H5Sclose);
+    const int rank = H5Sget_simple_extent_ndims(space);
+    if (rank < 1 || rank > 2)
+      throw Failure("cannot append to a dataset of rank " + std::to_string(rank));
+    H5Sget_simple_extent_dims(space, cur, nullptr);
+  }
+  write_rows(dset, cols, cur[0], rows, data);
+}
+
+void write_rows(hid_t dset, hsize_t cols, hsize_t first, hsize_t rows, const double* data) {
+  if (rows == 0) return;
   int rank = 0;
   {
     Handle space(H5Dget_space(dset), H5Sclose);
     rank = H5Sget_simple_extent_ndims(space);
     if (rank < 1 || rank > 2)
-      throw Failure("cannot append to a dataset of rank " + std::to_string(rank));
-    H5Sget_simple_extent_dims(space, cur, nullptr);
+      throw Failure("cannot write rows to a dataset of rank " + std::to_string(rank));
   }
-  hsize_t newdims[2] = {cur[0] + rows, cols};
+  hsize_t newdims[2] = {first + rows, cols};
   if (H5Dset_extent(dset, newdims) < 0) throw Failure("cannot extend a dataset");
   Handle fspace(H5Dget_space(dset), H5Sclose);
-  hsize_t start[2] = {cur[0], 0};
+  hsize_t start[2] = {first, 0};
   hsize_t count[2] = {rows, cols};
   H5Sselect_hyperslab(fspace, H5S_SELECT_SET, start, nullptr, count, nullptr);
   Handle mspace(H5Screate_simple(rank, count, nullptr), H5Sclose);

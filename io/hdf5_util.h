@@ -58,6 +58,10 @@ class Quiet {
 Handle create_file(const std::string& path);
 /// Opens an existing file; throws if it is not an HDF5 file or cannot be read.
 Handle open_file(const std::string& path, bool writable = false);
+/// The file driver open_file uses from now on (a POSIX one; default HDF5's).
+/// The results writer sets its own (io/write_guard.h): HDF5 sees a file open
+/// twice in one process as one file only when both use the same driver.
+void set_open_driver(hid_t driver);
 Handle create_group(hid_t loc, const std::string& name);
 Handle open_group(hid_t loc, const std::string& name);
 
@@ -94,5 +98,8 @@ Handle create_extendible(hid_t loc, const std::string& name, int rank, hsize_t c
                          hsize_t chunk_rows);
 /// Appends `rows` rows (row-major; `cols` values each, 1 for a rank-1 dataset).
 void append_rows(hid_t dset, hsize_t cols, hsize_t rows, const double* data);
+/// Sets the extent to first + rows rows and writes rows [first, first + rows):
+/// rows placed by a count the caller keeps, not by the dataset's current extent.
+void write_rows(hid_t dset, hsize_t cols, hsize_t first, hsize_t rows, const double* data);
 
 }  // namespace evas::h5

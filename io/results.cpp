@@ -1,13 +1,16 @@
 #include "io/results.h"
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <fstream>
 #include <limits>
 #include <sstream>
 
 #include "integrators/settings.h"
+#include "io/text_escape.h"
 
 namespace evas {
 
@@ -17,6 +20,40 @@ std::string number_text(double x) {
   char buf[40];
   std::snprintf(buf, sizeof buf, "%.10g", x);
   return buf;
+}
+
+std::string errno_text() {
+  const int e = errno;
+  return e ? std::strerror(e) : "write error";
+}
+
+std::string errno_suffix() {
+  const int e = errno;
+  return e ? std::string(": ") + std::strerror(e) : std::string();
+}
+
+void flush_file(hid_t file) {
+  if (H5Fflush(file, H5F_SCOPE_GLOBAL) < 0) throw h5::Failure("cannot flush the file");
+}
+
+// Space kept allocated beyond the end of the file (see io/write_guard.h): a
+// chunk of each dataset rewritten (twice: compressed chunks move), a batch of
+// rows, the metadata and close, and later the summary (~200 bytes a channel).
+long long default_reserve(std::size_t nc, int flush_rows, hsize_t chunk, hsize_t vchunk) {
+  const long long n = static_cast<long long>(nc);
+  const long long chunks =
+      2 * 8 * (static_cast<long long>(vchunk) * n + static_cast<long long>(chunk));
+  return chunks + 8LL * (n + 1) * flush_rows + 64 * 1024 + 256 * n + 16 * 1024;
+}
+
+// Writes a whole file; the check after close() also catches a full disk on the last buffer.
+void write_text_file(const std::string& path, const std::string& text, const char* what) {
+  errno = 0;
+  std::ofstream f(path);
+  if (!f) throw RunError(path + ": cannot write " + what + ": " + errno_text());
+  f << text;
+  f.close();
+  if (!f) throw RunError(path + ": cannot write " + what + ": " + errno_text());
 }
 
 }  // namespace
@@ -29,14 +66,17 @@ ResultsWriter::ResultsWriter(const std::string& path, std::vector<Channel> chann
   max_.assign(nc, -std::numeric_limits<double>::infinity());
   sumsq_.assign(nc, 0.0);
   opt_.flush_rows = std::max(1, opt_.flush_rows);
-  h5::Quiet quiet;
-  try {
-    file_ = h5::create_file(path_);
+  const hsize_t chunk = static_cast<hsize_t>(std::max(16, opt_.flush_rows));
+  const hsize_t vchunk = nc > 0 ? std::max<hsize_t>(1, std::min<hsize_t>(chunk, 65536 / nc)) : 1;
+  guard_ = std::make_unique<WriteGuard>(
+      path_, opt_.reserve_bytes >= 0 ? opt_.reserve_bytes
+                                     : default_reserve(nc, opt_.flush_rows, chunk, vchunk));
+  const bool ok = write_step([&] {
+    file_ = guard_->create_file();
     h5::write_attribute(file_, "scene", opt_.scene_text);
     h5::write_attribute(file_, "integrator", opt_.integrator);
     h5::write_attribute(file_, "grid", opt_.grid);
     h5::write_attribute(file_, "status", std::string("running"));
-    const hsize_t chunk = static_cast<hsize_t>(std::max(16, opt_.flush_rows));
     time_ = h5::create_extendible(file_, "time", 1, 1, chunk);
     h5::write_attribute(time_, "unit", std::string("s"));
     h5::Handle g = h5::create_group(file_, "channels");
@@ -47,14 +87,11 @@ ResultsWriter::ResultsWriter(const std::string& path, std::vector<Channel> chann
     }
     h5::write_strings(g, "names", names);
     h5::write_strings(g, "units", units);
-    if (nc > 0) {
-      const hsize_t vchunk = std::max<hsize_t>(1, std::min<hsize_t>(chunk, 65536 / nc));
-      values_ = h5::create_extendible(g, "values", 2, nc, vchunk);
-    }
-    H5Fflush(file_, H5F_SCOPE_GLOBAL);
-  } catch (const h5::Failure& e) {
-    throw RunError(path_ + ": " + e.what());
-  }
+    if (nc > 0) values_ = h5::create_extendible(g, "values", 2, nc, vchunk);
+    flush_file(file_);
+  });
+  if (!ok && !file_.valid()) throw RunError(broken_);  // not even created
+  if (ok) note_flush();  // a full disk shows here: the first row then fails the run
   last_flush_ = std::chrono::steady_clock::now();
 }
 
@@ -64,14 +101,58 @@ ResultsWriter::~ResultsWriter() {
   } catch (...) {
     // Destructors must not throw; what was flushed before stays readable.
   }
+  close_file();
+}
+
+// One step of writing; false (and the first failure kept in broken_) when it
+// failed: an HDF5 error, or a write the guard had to divert into memory.
+template <class Step>
+bool ResultsWriter::write_step(Step&& step) {
+  if (guard_->failed()) return false;
+  h5::Quiet quiet;
+  errno = 0;
+  try {
+    step();
+  } catch (const h5::Failure& e) {
+    if (broken_.empty()) broken_ = "results file " + path_ + ": " + e.what() + errno_suffix();
+    return false;
+  }
+  if (guard_->failed()) {
+    if (broken_.empty())
+      broken_ = "results file " + path_ + ": cannot write: " + std::strerror(guard_->error());
+    return false;
+  }
+  return true;
+}
+
+// After a complete flush: keep the space for the next one, or stop here.
+void ResultsWriter::note_flush() {
+  const int err = guard_->after_flush(written_);
+  if (err != 0 && broken_.empty())
+    broken_ = "results file " + path_ + ": cannot write: " + std::strerror(err) +
+              " (less than the " + std::to_string((guard_->bytes() + 1023) / 1024) +
+              " kB the next rows may need are left)";
+}
+
+void ResultsWriter::close_file() noexcept {
   h5::Quiet quiet;
   values_.reset();
   time_.reset();
   file_.reset();
 }
 
+std::string ResultsWriter::kept_text() const {
+  if (guard_->failed())
+    return "; the file could not be completed: it keeps at most the " + std::to_string(written_) +
+           " rows written before, with status 'running'";
+  std::string s = "; the file keeps " + std::to_string(written_) + " rows";
+  if (written_ > 0) s += " up to t = " + number_text(written_t_) + " s";
+  return s;
+}
+
 void ResultsWriter::append(double t, const double* values) {
   if (!file_.valid()) throw RunError(path_ + ": results file is already closed");
+  if (!broken_.empty()) fail_on_write();
   const std::size_t nc = channels_.size();
   if (!std::isfinite(t)) {
     flush();
@@ -94,36 +175,62 @@ void ResultsWriter::append(double t, const double* values) {
   }
   ++rows_;
   last_t_ = t;
-  const auto now = std::chrono::steady_clock::now();
-  if (static_cast<int>(tbuf_.size()) >= opt_.flush_rows ||
-      std::chrono::duration<double>(now - last_flush_).count() >= opt_.flush_seconds)
+  if (static_cast<int>(tbuf_.size()) >= opt_.flush_rows)
     flush();
+  else
+    flush_if_due();
 }
 
-void ResultsWriter::flush() {
+void ResultsWriter::flush_if_due() {
+  if (tbuf_.empty() || !broken_.empty()) return;
+  const auto now = std::chrono::steady_clock::now();
+  if (std::chrono::duration<double>(now - last_flush_).count() >= opt_.flush_seconds) flush();
+}
+
+void ResultsWriter::flush() { write_buffer(true); }
+
+// keep_space: renew the space kept for the next rows (not after the last rows).
+void ResultsWriter::write_buffer(bool keep_space) {
   last_flush_ = std::chrono::steady_clock::now();
   if (!file_.valid() || tbuf_.empty()) return;
-  h5::Quiet quiet;
-  try {
+  if (broken_.empty()) {
+    const hsize_t first = static_cast<hsize_t>(written_);
     const hsize_t rows = tbuf_.size();
-    if (values_.valid()) h5::append_rows(values_, channels_.size(), rows, vbuf_.data());
-    // Time last: a reader that sees a time row also sees its values.
-    h5::append_rows(time_, 1, rows, tbuf_.data());
-    if (H5Fflush(file_, H5F_SCOPE_GLOBAL) < 0) throw h5::Failure("cannot flush the file");
-  } catch (const h5::Failure& e) {
-    tbuf_.clear();
-    vbuf_.clear();
-    throw RunError(path_ + ": " + e.what());
+    const bool ok = write_step([&] {
+      if (values_.valid()) h5::write_rows(values_, channels_.size(), first, rows, vbuf_.data());
+      // Time last: a reader that sees a time row also sees its values.
+      h5::write_rows(time_, 1, first, rows, tbuf_.data());
+      flush_file(file_);
+    });
+    if (ok) {
+      written_ += static_cast<long>(rows);
+      written_t_ = tbuf_.back();
+      if (keep_space) note_flush();
+    }
   }
   tbuf_.clear();
   vbuf_.clear();
+  if (!broken_.empty()) fail_on_write();
+}
+
+void ResultsWriter::fail_on_write() {
+  reported_ = true;
+  throw RunError(broken_ + kept_text());
 }
 
 void ResultsWriter::finish(const IntegratorStats& st, const std::string& status) {
-  flush();
   if (!file_.valid()) return;
-  h5::Quiet quiet;
+  std::string error;
   try {
+    write_buffer(false);  // the last rows: the space kept takes the statistics too
+  } catch (const RunError& e) {
+    error = e.what();
+  }
+  const bool failed_before = status.rfind("failed", 0) == 0;
+  const std::string written_status = error.empty()   ? status
+                                     : failed_before ? status + "; " + error
+                                                     : "failed: " + error;
+  const bool ok = write_step([&] {
     h5::Handle g = h5::exists(file_, "stats") ? h5::open_group(file_, "stats")
                                               : h5::create_group(file_, "stats");
     h5::write_attribute(g, "steps", static_cast<long long>(st.steps));
@@ -143,15 +250,14 @@ void ResultsWriter::finish(const IntegratorStats& st, const std::string& status)
     h5::write_attribute(g, "min_step", st.min_step);
     h5::write_attribute(g, "max_step", st.max_step);
     h5::write_attribute(g, "last_order", static_cast<long long>(st.last_order));
-    h5::write_attribute(file_, "status", status);
-    h5::write_attribute(file_, "rows", static_cast<long long>(rows_));
-    g.reset();
-    values_.reset();
-    time_.reset();
-    file_.reset();
-  } catch (const h5::Failure& e) {
-    throw RunError(path_ + ": " + e.what());
-  }
+    h5::write_attribute(file_, "status", written_status);
+    h5::write_attribute(file_, "rows", static_cast<long long>(written_));
+    flush_file(file_);
+  });
+  if (!ok && error.empty() && !reported_) error = broken_ + kept_text();
+  close_file();
+  guard_.reset();  // gives back the space kept for the next rows: the summary may need it
+  if (!error.empty()) throw RunError(error);
 }
 
 std::vector<ChannelSummary> ResultsWriter::summary() const {
@@ -171,39 +277,6 @@ std::vector<ChannelSummary> ResultsWriter::summary() const {
 // Summary JSON (hand-written: a flat, stable layout that any tool can read).
 
 namespace {
-
-std::string json_string(const std::string& s) {
-  std::string out = "\"";
-  for (char ch : s) {
-    const unsigned char c = static_cast<unsigned char>(ch);
-    switch (ch) {
-      case '"':
-        out += "\\\"";
-        break;
-      case '\\':
-        out += "\\\\";
-        break;
-      case '\n':
-        out += "\\n";
-        break;
-      case '\r':
-        out += "\\r";
-        break;
-      case '\t':
-        out += "\\t";
-        break;
-      default:
-        if (c < 0x20) {
-          char buf[8];
-          std::snprintf(buf, sizeof buf, "\\u%04x", c);
-          out += buf;
-        } else {
-          out += ch;
-        }
-    }
-  }
-  return out + "\"";
-}
 
 std::string json_number(double x) {
   if (!std::isfinite(x)) return "null";
@@ -274,10 +347,7 @@ void write_summary_json(const std::string& path, const RunSummary& s) {
   }
   o << (s.channels.empty() ? "]\n" : "\n  ]\n");
   o << "}\n";
-  std::ofstream f(path);
-  if (!f) throw RunError(path + ": cannot write the summary (directory missing or not writable?)");
-  f << o.str();
-  if (!f) throw RunError(path + ": error while writing the summary");
+  write_text_file(path, o.str(), "the summary");
 }
 
 // ---------------------------------------------------------------------------
@@ -322,11 +392,12 @@ ResultsData read_results(const std::string& path) {
 
 void export_csv(const std::string& h5path, const std::string& csvpath) {
   const ResultsData d = read_results(h5path);
+  errno = 0;
   std::ofstream f(csvpath);
-  if (!f) throw InputError(csvpath + ": cannot write the CSV file");
+  if (!f) throw InputError(csvpath + ": cannot write the CSV file: " + errno_text());
   f << "time[s]";
   for (std::size_t c = 0; c < d.names.size(); ++c)
-    f << ',' << d.names[c] << '[' << d.units[c] << ']';
+    f << ',' << csv_field(d.names[c] + '[' + d.units[c] + ']');
   f << '\n';
   char buf[40];
   for (std::size_t r = 0; r < d.time.size(); ++r) {
@@ -339,7 +410,8 @@ void export_csv(const std::string& h5path, const std::string& csvpath) {
     }
     f << '\n';
   }
-  if (!f) throw InputError(csvpath + ": error while writing the CSV file");
+  f.close();  // the last buffer reaches the disk here: check after it
+  if (!f) throw InputError(csvpath + ": cannot write the CSV file: " + errno_text());
 }
 
 }  // namespace evas

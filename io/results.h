@@ -6,17 +6,25 @@
 //                       "crank-angle"), status ("running", "completed", "failed: ...")
 //   /stats              group; integrator statistics as attributes (finish())
 // Rows are buffered and flushed (extent + write + H5Fflush) every `flush_rows`
-// rows or `flush_seconds` of wall time, so a crash keeps what was computed.
-// Non-finite values are never written: append() throws RunError instead.
+// rows or `flush_seconds` of wall time (checked by append() and by
+// flush_if_due(), which a run calls between steps too), so a crash keeps what
+// was computed. Non-finite values are never written: append() throws RunError.
+//
+// A full disk keeps the file valid, and a failed write does not crash (see
+// io/write_guard.h): append() and flush() then throw RunError naming the file,
+// the error and the rows the file keeps; finish() still writes the status (if
+// the disk allows) and closes the file.
 #pragma once
 
 #include <chrono>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "elements/element.h"
 #include "integrators/integrator.h"
 #include "io/hdf5_util.h"
+#include "io/write_guard.h"
 
 namespace evas {
 
@@ -34,6 +42,10 @@ class ResultsWriter {
     std::string grid = "time";
     int flush_rows = 256;
     double flush_seconds = 1.0;
+    /// Space kept allocated beyond the end of the file, so that a full disk stops
+    /// the run while the file is complete [bytes]; -1: enough for one flush of
+    /// rows, the close and a summary; 0: none.
+    long long reserve_bytes = -1;
   };
 
   /// Creates (truncates) `path`. Throws RunError naming the file on failure.
@@ -49,24 +61,46 @@ class ResultsWriter {
   void append(double t, const std::vector<double>& values) { append(t, values.data()); }
   /// Writes buffered rows and flushes the file.
   void flush();
-  /// Flushes, writes statistics and status, closes the file.
+  /// flush() if rows are buffered for `flush_seconds` or longer (cheap otherwise).
+  void flush_if_due();
+  /// Flushes, writes statistics and status, closes the file. When the final
+  /// flush or these writes fail, the status written (if it can be) is
+  /// "failed: <the write error>" unless `status` already reports a failure, the
+  /// file is closed all the same, and RunError names the file and the error.
   void finish(const IntegratorStats& stats, const std::string& status);
 
   const std::string& path() const { return path_; }
   const std::vector<Channel>& channels() const { return channels_; }
+  /// Rows appended, and the time of the last.
   long rows() const { return rows_; }
   double last_time() const { return last_t_; }
+  /// Rows in the file (equal to rows() after a successful flush), and the time of the last.
+  long rows_written() const { return written_; }
+  double last_time_written() const { return written_t_; }
+  /// Empty, or the first write failure (the file keeps rows_written() rows).
+  const std::string& write_error() const { return broken_; }
   std::vector<ChannelSummary> summary() const;
 
  private:
   std::string path_;
   std::vector<Channel> channels_;
+  template <class Step>
+  bool write_step(Step&& step);
+  void write_buffer(bool keep_space);
+  void note_flush();
+  [[noreturn]] void fail_on_write();
+  void close_file() noexcept;
+  std::string kept_text() const;
+
   Options opt_;
+  std::unique_ptr<WriteGuard> guard_;  // before the handles: outlives them
   h5::Handle file_, time_, values_;
   std::vector<double> tbuf_, vbuf_;
   std::vector<double> min_, max_, sumsq_;
-  long rows_ = 0;
-  double last_t_ = 0.0;
+  long rows_ = 0, written_ = 0;
+  double last_t_ = 0.0, written_t_ = 0.0;
+  std::string broken_;
+  bool reported_ = false;  // broken_ was thrown
   std::chrono::steady_clock::time_point last_flush_;
 };
 
