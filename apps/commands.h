@@ -1,6 +1,7 @@
 // Sub-commands of the `evas` executable. Each takes the arguments after its
 // name (args[0] is the sub-command) and returns the process exit code:
-// 0 success, 1 bad input (InputError), 2 the run or the command failed.
+// 0 success, 1 bad input (InputError), 2 the run or the command failed;
+// `evas run` 128 + N when stopped by signal N (docs/errors.md).
 #pragma once
 
 #include <boost/program_options.hpp>
