@@ -43,6 +43,15 @@ struct IntegratorSettings {
   /// down to min_step) or "adaptive" (local error against rtol/atol, from `step`)
   std::string step_control = "substep";
   double min_step = 1e-12;  ///< smallest step the step control may take [s]
+  /// Constrained problems (Problem::constraint_count() > 0): "index-3", "index-2",
+  /// "ggl", "index-1" (with Baumgarte terms when baumgarte_alpha/beta > 0) or
+  /// "penalty" (an ODE: constraint forces k g + c g'); "default" = the integrator's
+  /// own choice (ida: ggl; generalized-alpha, linear-acceleration: index-3).
+  std::string formulation = "default";
+  double baumgarte_alpha = 0.0;    ///< index-1: 2 alpha g' term [1/s]
+  double baumgarte_beta = 0.0;     ///< index-1: beta^2 g term [1/s]
+  double penalty_stiffness = 1e9;  ///< penalty: k (per unit of g) [N/m, N m/rad]
+  double penalty_damping = 0.0;    ///< penalty: c (per unit of g') [N s/m]
 };
 
 /// Statistics every run reports.
@@ -63,6 +72,8 @@ struct IntegratorStats {
   double last_step = 0.0;
   double min_step = 0.0, max_step = 0.0;
   int last_order = 0;
+  /// Constrained problems: largest |g| and |G v + g_t| seen at the outputs.
+  double max_constraint = 0.0, max_constraint_rate = 0.0;
 };
 
 /// Observer of the accepted steps of a run: called with the time reached and the
@@ -90,6 +101,12 @@ class Integrator {
   /// Restart from a changed state at the current time (after Problem::at_stop).
   virtual void restart(double t, const Vec& q, const Vec& v) = 0;
   virtual IntegratorStats stats() const = 0;
+  /// Constrained problems: the multipliers lambda (size m) at the state last
+  /// returned by advance(); false when the integrator has none (ODE, penalty).
+  virtual bool multipliers(Vec& lambda) const {
+    (void)lambda;
+    return false;
+  }
 
  protected:
   /// For the integrators: report an accepted step to the monitor (if any).

@@ -4,6 +4,26 @@
 
 namespace evas {
 
+namespace {
+const SpMat& empty_pattern() {
+  static const SpMat empty;
+  return empty;
+}
+}  // namespace
+
+void Problem::mass(double, const double*, SpMat&) {
+  throw RunError("problem has no mass matrix (has_mass() is false)");
+}
+const SpMat& Problem::mass_pattern() const { return empty_pattern(); }
+void Problem::constraint(double, const double*, const double*, double*, double*, double*) {
+  throw RunError("problem has no constraints");
+}
+void Problem::constraint_jacobian(double, const double*, SpMat&) {
+  throw RunError("problem has no constraints");
+}
+const SpMat& Problem::constraint_pattern() const { return empty_pattern(); }
+std::string Problem::constraint_name(int i) const { return "g" + std::to_string(i + 1); }
+
 std::string Problem::describe_state(double t, const double* q, const double* v) const {
   std::ostringstream os;
   os << "t = " << t << " s, n = " << size();

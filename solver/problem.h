@@ -7,6 +7,15 @@
 // Integrators that need the first-order forms use FirstOrderForm
 // (solver/first_order.h), which derives both from this interface.
 //
+// Constrained systems (DAE; docs/theory.md section 8). A problem may add a
+// (possibly non-unit, configuration-dependent) mass matrix and holonomic
+// constraints, giving the general form
+//     M(q) qdd + f(t, q, v) + G(t, q)^T lambda = 0,   g(t, q) = 0,   G = dg/dq,
+// with lambda in R^m the multipliers. The defaults (M = I, m = 0) are the ODE
+// form above, and integrators take today's path for such problems unchanged.
+// The formulations (index-3, index-2, GGL, index-1 with Baumgarte, penalty) are
+// built from these parts by dae/formulation.h; no problem writes them itself.
+//
 // Stops: times the integrators must land on exactly (speed-profile knots,
 // LOF re-anchoring). At a stop the problem may change the state (re-anchoring)
 // and the integrator must then restart from the returned state.
@@ -54,6 +63,30 @@ class Problem {
     KB.coeffs().setZero();
     CB.coeffs().setZero();
   }
+  // ---- DAE parts (defaults: M = I, no constraints) ----
+  /// True when M(q) is not the identity.
+  virtual bool has_mass() const { return false; }
+  /// M(q) on mass_pattern() (n x n, symmetric positive definite); only values written.
+  virtual void mass(double t, const double* q, SpMat& M);
+  virtual const SpMat& mass_pattern() const;
+  /// Number of constraint equations m (0: an ODE).
+  virtual int constraint_count() const { return 0; }
+  /// Constraint values at (t, q, v): g = g(t, q); gv = dg/dt = G v + g_t (the
+  /// velocity constraint); ga = the acceleration constraint at qdd = 0, i.e.
+  ///   d(gv)/dt = G qdd + ga,  ga = (G v)_q v + 2 g_tq v + g_tt.
+  /// Any output pointer may be null (not wanted). Each is m long.
+  virtual void constraint(double t, const double* q, const double* v, double* g, double* gv,
+                          double* ga);
+  /// G = dg/dq (m x n) on constraint_pattern(); only values are written.
+  virtual void constraint_jacobian(double t, const double* q, SpMat& G);
+  virtual const SpMat& constraint_pattern() const;
+  /// True when G does not depend on q and g_t is constant in time (e.g. joints of
+  /// a body whose frame does not move): then (G^T lambda)_q, (G v)_q and the
+  /// derivatives of ga vanish, and formulations skip them.
+  virtual bool constraints_linear() const { return false; }
+  /// Name of constraint equation i (for outputs and messages), e.g. "weld1.x".
+  virtual std::string constraint_name(int i) const;
+
   /// Human-readable description of where a failure happened (element, body, state).
   virtual std::string describe_state(double t, const double* q, const double* v) const;
 
