@@ -185,7 +185,8 @@ void JournalBearing::fail_if_closed(double t, double e) const {
                      fmt(eps) + " >= 1 at t = " + fmt(t) + " s (journal centre " + fmt(e) +
                      " m off the bearing centre, radial clearance " + fmt(p_.clearance) +
                      " m). At the start this means the two markers do not share a centre: "
-                     "give set markers a 'centre' on the bearing axis (a surface set's node "
+                     "give set markers 'centre: fit' (the least-squares cylinder through the "
+                     "set's nodes) or a 'centre' on the bearing axis (a surface set's node "
                      "centroid lies off the axis by the mesh's irregularity)");
   if (eps > p_.eps_max && !(p_.contact_stiffness > 0.0))
     throw RangeError(

@@ -825,6 +825,9 @@ ModalBody body_from_ccx_modes(const std::string& name, const FeModel& fe, const 
     keep.push_back(k);
   }
   if (keep.empty()) fail("no elastic modes in the .frd within the requested count / cut-off");
+  if (opt.num_elastic > static_cast<int>(keep.size()) && lambda_cut == 0.0)
+    fail(std::to_string(opt.num_elastic) + " elastic modes asked for, but the .frd holds only " +
+         std::to_string(keep.size()) + " (run ccx with more *FREQUENCY modes, or ask for fewer)");
   Mat elastic(3 * N, static_cast<Eigen::Index>(keep.size()));
   Vec lam_keep(static_cast<Eigen::Index>(keep.size()));
   for (std::size_t j = 0; j < keep.size(); ++j) {

@@ -16,6 +16,7 @@
 #include "io/body_file.h"
 #include "io/outputs.h"
 #include "solver/body_builder.h"
+#include "solver/cylinder_fit.h"
 #include "solver/modal_contract.h"
 #include "solver/truss.h"
 
@@ -174,6 +175,21 @@ class SceneReader {
                const Vec3& def) const {
     const Node v = map[key];
     return v ? vec3(v, item, key) : def;
+  }
+  /// A set marker's `centre`: three numbers, or `fit` for the centre of the
+  /// least-squares cylinder through the set's nodes (solver/cylinder_fit.h).
+  Vec3 marker_centre(const Node& v, const std::string& item, const ModalBody& body,
+                     const std::vector<long>& ids) const {
+    if (!v.IsScalar()) return vec3(v, item, "centre");
+    if (v.Scalar() != "fit")
+      fail(v, item, "'centre' must be a list of 3 numbers or 'fit'" + got(v));
+    std::vector<Vec3> pts;
+    for (long id : ids) pts.push_back(body.s.row(body.node_index(id)).transpose());
+    try {
+      return fit_cylinder(pts).centre;
+    } catch (const InputError& e) {
+      fail(v, item, std::string("centre: fit: ") + e.what());
+    }
   }
   static std::string got(const Node& v) {
     if (v.IsScalar()) return ", got '" + v.Scalar() + "'";
@@ -552,7 +568,7 @@ void SceneReader::read_marker(const Node& m, std::size_t i, Model& model) {
         if (m["weights"]) weights = numbers(m["weights"], item, "weights", ids.size());
         Vec3 centre;
         const bool has_centre = bool(m["centre"]);
-        if (has_centre) centre = vec3(m["centre"], item, "centre");
+        if (has_centre) centre = marker_centre(m["centre"], item, data, ids);
         marker = make_set_marker(name, body, data, ids, weights, has_centre ? &centre : nullptr);
       }
     } catch (const InputError& e) {

@@ -390,6 +390,11 @@ ModalBody build_modal_body(const std::string& name, const FeModel& fe, const Bui
     fail(name, os.str());
   }
 
+  if (opt.num_elastic > static_cast<int>(keep.size()) && lambda_cut == 0.0)
+    fail(name, std::to_string(opt.num_elastic) +
+                   " elastic modes asked for, but the model has only " +
+                   std::to_string(keep.size()) + " (ask for fewer)");
+
   // --- assemble -----------------------------------------------------------------
   Mat elastic(Phi.rows(), static_cast<Eigen::Index>(keep.size()));
   Vec lam_keep(static_cast<Eigen::Index>(keep.size()));

@@ -374,3 +374,26 @@ TEST_F(Cylinder, ElasticModesCarryNoRigidMotion) {
   const double scale = d.participation.topRows(6).cwiseAbs().maxCoeff();
   EXPECT_LT(d.participation.bottomRows(10).cwiseAbs().maxCoeff(), 1e-8 * scale);
 }
+
+TEST(CalculixImport, MoreElasticModesThanTheFrdHoldsIsAnError) {
+  // block_ev.frd holds 16 modes (6 rigid + 10 elastic): asking for 12 elastic
+  // modes must not silently give 10.
+  const FeModel fe = block_model();
+  BuildOptions opt;
+  opt.num_elastic = 12;
+  try {
+    body_from_ccx_modes("b", fe, read_frd_modes(kData + "block_ev.frd"),
+                        read_dat_modal(kData + "block_ev.dat"), opt);
+    FAIL() << "12 of 10 elastic modes accepted";
+  } catch (const InputError& e) {
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find("12 elastic modes asked for, but the .frd holds only 10"), std::string::npos)
+        << msg;
+  }
+  // the same count with a frequency cut-off is "at most": accepted
+  opt.max_frequency = 1e9;
+  EXPECT_EQ(body_from_ccx_modes("b", fe, read_frd_modes(kData + "block_ev.frd"),
+                                read_dat_modal(kData + "block_ev.dat"), opt)
+                .num_modes(),
+            16);
+}
