@@ -6,7 +6,7 @@ DEBS = cmake g++ make libsundials-dev libsuitesparse-dev libeigen3-dev libspectr
        libboost-program-options-dev libgtest-dev libyaml-cpp-dev libhdf5-dev gnuplot-nox \
        gmsh calculix-ccx
 
-.PHONY: deps build demo test bench work-precision docs format clean validate
+.PHONY: deps build demo test bench work-precision docs format clean validate sanitize
 
 deps:
 	@missing=""; for p in $(DEBS); do dpkg -s $$p >/dev/null 2>&1 || missing="$$missing $$p"; done; \
@@ -35,6 +35,15 @@ validate: build
 
 test: build
 	cd $(BUILD) && ctest --output-on-failure -j$(JOBS)
+
+# Sanitizers and fuzzing (docs/fuzzing.md), run by CI after `make test`: the
+# sanitizer subset of the suite and the evas program under ASan + UBSan, then a
+# short libFuzzer run of every input reader; one clang build in $(SAN_BUILD).
+SAN_BUILD ?= build-fuzz
+FUZZ_SECONDS ?= 20
+sanitize: build
+	JOBS=$(JOBS) ./scripts/sanitize.sh $(SAN_BUILD)
+	JOBS=$(JOBS) EVAS_BIN=$(abspath $(BUILD))/evas ./scripts/fuzz.sh $(FUZZ_SECONDS) $(SAN_BUILD)
 
 bench: build
 	cmake --build $(BUILD) -j$(JOBS) --target evas_bench

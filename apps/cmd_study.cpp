@@ -20,21 +20,23 @@ namespace {
 volatile std::sig_atomic_t g_stop = 0;
 
 extern "C" void on_study_signal(int sig) {
-  g_stop = 1;
+  g_stop = sig;               // the signal number: the exit code is 128 + it
   std::signal(sig, SIG_DFL);  // a second signal ends the process at once
 }
 
-// Installs the SIGINT/SIGTERM handlers for the life of a study.
+// Installs the SIGINT/SIGTERM/SIGHUP handlers for the life of a study.
 class SignalGuard {
  public:
   SignalGuard() {
     g_stop = 0;
     int_ = std::signal(SIGINT, on_study_signal);
     term_ = std::signal(SIGTERM, on_study_signal);
+    hup_ = std::signal(SIGHUP, on_study_signal);
   }
   ~SignalGuard() {
     std::signal(SIGINT, int_);
     std::signal(SIGTERM, term_);
+    std::signal(SIGHUP, hup_);
   }
   SignalGuard(const SignalGuard&) = delete;
   SignalGuard& operator=(const SignalGuard&) = delete;
@@ -42,6 +44,7 @@ class SignalGuard {
  private:
   void (*int_)(int) = SIG_DFL;
   void (*term_)(int) = SIG_DFL;
+  void (*hup_)(int) = SIG_DFL;
 };
 
 const char* kOverview =
@@ -60,7 +63,8 @@ const char* kOverview =
     "\n"
     "`evas study <sub-command> --help` lists the options.\n"
     "Exit codes: 0 the study completed (failed cases are results), 1 bad input,\n"
-    "2 the reference run failed, 3 convergence --expect not met, 130 interrupted.\n";
+    "2 the reference run failed, 3 convergence --expect not met, 128 + N stopped by signal N (130: "
+    "Ctrl-C).\n";
 
 const char* kGrid =
     "Case spec: \"NAME KEY=V1,V2 KEY=A..B/N ...\": NAME an integrator (ida, cvode,\n"
@@ -161,11 +165,14 @@ std::string read_text(const std::string& path) {
   return ss.str();
 }
 
+// A reference run cut short by a signal is an interrupt (128 + N), else exit 2.
+int reference_failed_code() { return g_stop > 0 ? 128 + static_cast<int>(g_stop) : 2; }
+
 int finish(const study::StudyInfo& info, bool quiet) {
   print_files(info, quiet);
   if (info.interrupted) {
     std::cerr << "evas study: interrupted; the outputs hold the cases run so far\n";
-    return 130;
+    return 128 + (g_stop > 0 ? static_cast<int>(g_stop) : SIGINT);  // 130 for Ctrl-C
   }
   return 0;
 }
@@ -186,7 +193,7 @@ int work_precision(const std::vector<std::string>& args) {
       "\"linear-acceleration step=4e-5,2e-5,1e-5,5e-6\".\n\n" +
       std::string(kGrid) +
       "\nExit codes: 0 completed (even with failed cases), 1 bad input, 2 the reference\n"
-      "failed, 130 interrupted.\n\noptions");
+      "failed, 128 + N stopped by signal N (130: Ctrl-C).\n\noptions");
   add_cases(opts);
   add_common(opts);
   po::variables_map vm;
@@ -204,7 +211,7 @@ int work_precision(const std::vector<std::string>& args) {
     return finish(res.info, vm.count("quiet") > 0);
   } catch (const study::ReferenceFailed& e) {
     std::cerr << "evas study work-precision: " << e.what() << "\n";
-    return 2;
+    return reference_failed_code();
   }
 }
 
@@ -221,7 +228,7 @@ int convergence(const std::vector<std::string>& args) {
       "slope could be fitted), for use in CI.\n\n" +
       std::string(kGrid) +
       "\nExit codes: 0 completed, 1 bad input, 2 the reference failed, 3 --expect not\n"
-      "met, 130 interrupted.\n\noptions");
+      "met, 128 + N stopped by signal N (130: Ctrl-C).\n\noptions");
   opts.add_options()("case,c", po::value<std::string>(), "the case family (one spec)")(
       "repeats", po::value<int>()->default_value(1),
       "runs per case; the wall time (init + integrate) is the minimum")(
@@ -261,7 +268,7 @@ int convergence(const std::vector<std::string>& args) {
     return 0;
   } catch (const study::ReferenceFailed& e) {
     std::cerr << "evas study convergence: " << e.what() << "\n";
-    return 2;
+    return reference_failed_code();
   }
 }
 
@@ -280,7 +287,8 @@ int stability(const std::vector<std::string>& args) {
       "largest stable step against the swept parameter. --window and --norm do not\n"
       "apply (the whole run is checked).\n\n"
       "Exit codes: 0 completed, 1 bad input, 2 the reference failed (without --sweep;\n"
-      "with it the point is marked 'reference failed'), 130 interrupted.\n\noptions");
+      "with it the point is marked 'reference failed'), 128 + N stopped by signal N (130: "
+      "Ctrl-C).\n\noptions");
   opts.add_options()("case,c", po::value<std::string>(), "the case (one integrator setting)")(
       "step-range", po::value<std::string>(), "HMIN:HMAX, the steps searched [s]")(
       "sweep", po::value<std::string>(),
@@ -321,7 +329,7 @@ int stability(const std::vector<std::string>& args) {
     return finish(res.info, vm.count("quiet") > 0);
   } catch (const study::ReferenceFailed& e) {
     std::cerr << "evas study stability: " << e.what() << "\n";
-    return 2;
+    return reference_failed_code();
   }
 }
 

@@ -28,19 +28,9 @@ secs="${1:?usage: scripts/fuzz.sh SECONDS_PER_TARGET [BUILD_DIR]}"
 build="${2:-build-fuzz}"
 jobs="${JOBS:-1}"
 
-# --- tools: clang with the libFuzzer runtime (Debian 12: clang, libclang-rt-14-dev) -----
-need=""
-command -v clang++ >/dev/null 2>&1 || need="$need clang"
-command -v python3 >/dev/null 2>&1 || need="$need python3"
-ls /usr/lib/llvm-*/lib/clang/*/lib/linux/libclang_rt.fuzzer-x86_64.a >/dev/null 2>&1 ||
-  need="$need libclang-rt-14-dev"
-if [ -n "$need" ]; then
-  echo "installing:$need"
-  SUDO=""; [ "$(id -u)" = 0 ] || SUDO=sudo
-  $SUDO apt-get update -qq && DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq $need
-fi
-symbolizer="$(command -v llvm-symbolizer || ls /usr/lib/llvm-*/bin/llvm-symbolizer 2>/dev/null | tail -1 || true)"
-[ -n "$symbolizer" ] && export ASAN_SYMBOLIZER_PATH="$symbolizer"
+# --- tools: clang with the libFuzzer runtime ---------------------------------------
+# shellcheck source=scripts/clang_deps.sh
+. scripts/clang_deps.sh
 
 # --- build ----------------------------------------------------------------------------
 if [ "${FUZZ_NO_BUILD:-0}" != 1 ]; then

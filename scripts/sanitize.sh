@@ -1,54 +1,61 @@
 #!/usr/bin/env bash
 # AddressSanitizer + UndefinedBehaviorSanitizer run of a subset of the test
-# suite (docs/fuzzing.md, "Sanitizer subset").
+# suite and of the evas program (docs/fuzzing.md, "Sanitizer subset").
 #
-#   scripts/sanitize.sh [BUILD_DIR]        (default build-asan)
+#   scripts/sanitize.sh [BUILD_DIR]        (default build-fuzz)
 #
-# Configures the top-level project with GCC, -fsanitize=address,undefined
-# -fno-omit-frame-pointer -fno-sanitize-recover=undefined, -O1 -g, assertions
-# on (Eigen's index checks included) and -DEVAS_WERROR=ON; builds only the test
-# executables below and runs each with
-#   ASAN_OPTIONS=detect_leaks=1:abort_on_error=1
-#   UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1
-# Exits 1 if any executable reports a sanitizer error, 2 if a test fails without
-# one, 0 if all pass. Logs: BUILD_DIR/sanitize-logs/<test>.log.
+# Builds with clang in the fuzz/ project (the same instrumented library as the
+# fuzzers, -O1 -g): the test executables below into BUILD_DIR/tests and the evas
+# program, which test_bad_inputs (the bad-input catalogue, tests/data/bad) and
+# test_run_faults run, so every evas process they start is sanitized too. Each
+# test runs with
+#   ASAN_OPTIONS=detect_leaks=1:log_path=...   UBSAN_OPTIONS=halt_on_error=1:log_path=...
+# so that a report of any process, the test's own or a child's, lands in a file.
+# Exits 1 if there is any sanitizer report, 2 if a test fails without one, 0 if
+# all pass. Logs: BUILD_DIR/sanitize-logs/<test>.log and reports/.
 #
 # Environment: JOBS (build jobs, default 1), SANITIZE_TESTS (override the list,
 # entries "name" or "name:gtest_filter").
 set -euo pipefail
 cd "$(dirname "$0")/.."
-build="${1:-build-asan}"
+build="${1:-build-fuzz}"
 jobs="${JOBS:-1}"
 
-# Input parsing (scene, body file, pressure table, CalculiX, results), the force
-# elements, every integrator and step control, the study driver and the system
-# Jacobian. Left out: the engine-size tests (test_engine_*, test_validation_engine,
-# test_coupled_bodies, test_stability ...) that take minutes without a sanitizer,
-# and test_calculix's Cylinder.* suite, which meshes and solves with gmsh and ccx
-# (external programs, not instrumented; ~40 s in Release).
-default_tests="test_scene test_scene_elements test_body_file test_results test_gas_pressure
-  test_calculix:Calculix* test_journal_bearing test_integrators_sdof test_step_control
-  test_study test_system_jacobian"
-tests="${SANITIZE_TESTS:-$default_tests}"
+# shellcheck source=scripts/clang_deps.sh
+. scripts/clang_deps.sh
 
-san="-fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined"
+# Input parsing (scene, body file, pressure table, CalculiX, results), the bad-input
+# catalogue and the run faults through the evas program, the force elements, every
+# integrator and step control, constrained systems and their test problems, the
+# study driver and the system Jacobian. Left out: the engine-size tests
+# (test_engine_*, test_validation_engine, test_coupled_bodies, test_stability ...)
+# that take minutes without a sanitizer, and test_calculix's Cylinder.* suite,
+# which meshes and solves with gmsh and ccx (external programs, not instrumented).
+default_tests="test_scene test_scene_elements test_marker_fit test_body_file test_results
+  test_gas_pressure test_calculix:Calculix* test_journal_bearing test_integrators_sdof
+  test_step_control test_study test_system_jacobian test_bad_inputs test_run_faults
+  test_joints test_dae_formulations test_ida_dae test_newmark_dae test_problems"
+tests=""
+for t in ${SANITIZE_TESTS:-$default_tests}; do
+  [ -f "tests/${t%%:*}.cpp" ] && tests="$tests $t"
+done
+names=""
+for t in $tests; do names="$names;${t%%:*}"; done
+
 t0=$(date +%s)
-CC=gcc CXX=g++ cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Debug \
-  -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g" -DCMAKE_C_FLAGS_DEBUG="-O1 -g" \
-  -DCMAKE_CXX_FLAGS="$san" -DCMAKE_C_FLAGS="$san" \
-  -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined" -DEVAS_WERROR=ON >/dev/null
-targets=""
+CC=clang CXX=clang++ cmake -S fuzz -B "$build" -DEVAS_SANITIZE_TESTS="${names#;}" >/dev/null
+targets="evas"
 for t in $tests; do targets="$targets ${t%%:*}"; done
-# gtest_discover_tests runs each executable at build time: with the sanitizer's
-# options, so a report at start-up already stops the build.
-export ASAN_OPTIONS="detect_leaks=1:abort_on_error=1"
-export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1"
 # shellcheck disable=SC2086
 cmake --build "$build" -j"$jobs" --target $targets
 t1=$(date +%s)
 
 logs="$build/sanitize-logs"
-mkdir -p "$logs"
+rm -rf "$logs"
+mkdir -p "$logs/reports"
+reports_dir="$(cd "$logs/reports" && pwd)"
+export ASAN_OPTIONS="detect_leaks=1:log_path=$reports_dir/asan"
+export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1:log_path=$reports_dir/ubsan"
 reports=0
 failures=0
 printf '%-24s %7s  %s\n' test seconds result
@@ -56,15 +63,20 @@ for t in $tests; do
   name="${t%%:*}"
   filter="*"
   [ "$name" != "$t" ] && filter="${t#*:}"
+  before=$(ls "$reports_dir" | wc -l)
   s=$(date +%s)
   rc=0
   (cd "$build/tests" && "./$name" --gtest_filter="$filter") >"$logs/$name.log" 2>&1 || rc=$?
   e=$(date +%s)
-  if grep -qE 'ERROR: (AddressSanitizer|LeakSanitizer)|runtime error:|SUMMARY: (Address|Undefined|Leak)' \
-       "$logs/$name.log"; then
-    result="SANITIZER REPORT (see $logs/$name.log)"
+  after=$(ls "$reports_dir" | wc -l)
+  if [ "$after" -gt "$before" ]; then
+    result="SANITIZER REPORT ($((after - before)) file(s) in $reports_dir)"
     reports=$((reports + 1))
-    grep -m1 -E 'ERROR: (AddressSanitizer|LeakSanitizer)|runtime error:' "$logs/$name.log" | sed 's/^/    /'
+    for f in $(ls -t "$reports_dir" | head -"$((after - before))"); do
+      grep -m1 -E 'ERROR: (AddressSanitizer|LeakSanitizer)|runtime error:' "$reports_dir/$f" |
+        sed 's/^/    /' || true
+      mv "$reports_dir/$f" "$reports_dir/$name.$f"
+    done
   elif [ "$rc" -ne 0 ]; then
     result="FAILED, exit $rc, no sanitizer report (see $logs/$name.log)"
     failures=$((failures + 1))

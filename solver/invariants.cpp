@@ -20,6 +20,13 @@ ModalInvariants compute_invariants(const ModalBody& body) {
   const SpMat& Ms = body.mass;
   const Vec row_mass = Ms * Vec::Ones(body.num_nodes());
   inv.S.resize(3, n);
+  if (n == 0) {  // no modes: empty invariants (no row views of empty matrices)
+    for (auto& row : inv.p)
+      for (Vec& x : row) x.resize(0);
+    for (auto& row : inv.M)
+      for (Mat& x : row) x.resize(0, 0);
+    return inv;
+  }
   std::array<Mat, 3> MsPhi;
   for (int a = 0; a < 3; ++a) {
     const Mat Pa = component(body.modes, a);

@@ -47,7 +47,8 @@ SceneInfo probe_scene(const SceneSource& src) {
 }
 
 RunData run_case(const SceneSource& src, const IntegratorSettings& settings,
-                 const std::vector<int>& channels, const RowCheck& check) {
+                 const std::vector<int>& channels, const RowCheck& check,
+                 const std::function<bool()>& stop) {
   RunData d;
   std::unique_ptr<Integrator> integ;
   std::vector<double> rows;  // row-major, channels.size() per row
@@ -77,6 +78,10 @@ RunData run_case(const SceneSource& src, const IntegratorSettings& settings,
       if (check) check(t, sel.data());
     };
     integ = make_integrator(settings.name);
+    if (stop)
+      integ->set_step_monitor([&stop](double t, double) {
+        if (stop()) throw RunError("interrupted at t = " + std::to_string(t) + " s");
+      });
     Vec q0, v0;
     sys.initial_state(q0, v0);
     std::vector<double> times = out.times();
@@ -110,10 +115,10 @@ RunData run_case(const SceneSource& src, const IntegratorSettings& settings,
 RunData run_case_repeated(const SceneSource& src, const IntegratorSettings& settings,
                           const std::vector<int>& channels, int repeats,
                           const std::function<bool()>& stop) {
-  RunData best = run_case(src, settings, channels);
+  RunData best = run_case(src, settings, channels, nullptr, stop);
   for (int k = 1; k < repeats && best.status == "completed"; ++k) {
     if (stop && stop()) break;
-    RunData again = run_case(src, settings, channels);
+    RunData again = run_case(src, settings, channels, nullptr, stop);
     if (again.status != "completed") return again;
     again.wall = std::min(again.wall, best.wall);
     best = std::move(again);

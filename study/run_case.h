@@ -47,13 +47,16 @@ struct RunData {
 using RowCheck = std::function<void(double t, const double* values)>;
 
 /// Runs `settings` on the scene, keeping the `channels` (indices into the
-/// scene's channels). Never throws for a failure of the run itself.
+/// scene's channels). Never throws for a failure of the run itself. `stop` (may
+/// be empty) is asked after every step: true ends the run as failed, message
+/// "interrupted at t = ...".
 RunData run_case(const SceneSource& src, const IntegratorSettings& settings,
-                 const std::vector<int>& channels, const RowCheck& check = nullptr);
+                 const std::vector<int>& channels, const RowCheck& check = nullptr,
+                 const std::function<bool()>& stop = nullptr);
 
 /// run_case `repeats` times (stopping at the first failure); the wall time is
 /// the minimum over the runs, data and statistics are those of the last run.
-/// `stop` (may be empty) is asked before each repeat after the first.
+/// `stop` (may be empty) is asked after every step and before each repeat.
 RunData run_case_repeated(const SceneSource& src, const IntegratorSettings& settings,
                           const std::vector<int>& channels, int repeats,
                           const std::function<bool()>& stop = nullptr);

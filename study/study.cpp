@@ -123,7 +123,7 @@ Reference run_reference(const Options& opt, const SceneSource& src, const SceneI
                         const std::vector<std::string>& units) {
   const Case c = reference_case(opt.reference, info.integrator);
   say(opt, "evas study: reference " + c.label + " ...");
-  RunData d = run_case(src, c.settings, channels);
+  RunData d = run_case(src, c.settings, channels, nullptr, opt.stop);
   if (d.status != "completed")
     throw ReferenceFailed("the reference run '" + c.label + "' failed: " + d.message);
   if (d.time.size() != info.times.size())
@@ -601,6 +601,7 @@ WorkPrecisionResult work_precision(const Options& opt, const std::vector<CaseInp
     }
     const RunData d =
         run_case_repeated(s.src, cases[k].settings, s.channels, opt.repeats, opt.stop);
+    if (stopped(opt)) break;  // cut short by the interrupt: left "not run"
     res.cases[k] = evaluate(cases[k], d, res.reference, rows, s.norm, scale);
     say(opt, case_line(k + 1, cases.size(), res.cases[k]));
     write_work_precision(opt, res, rows);
@@ -741,6 +742,7 @@ ConvergenceResult convergence(const Options& opt, const CaseInput& spec) {
     }
     const RunData d =
         run_case_repeated(s.src, cases[k].settings, s.channels, opt.repeats, opt.stop);
+    if (stopped(opt)) break;  // cut short by the interrupt: left "not run"
     res.cases[k] = evaluate(cases[k], d, res.reference, rows, s.norm, scale);
     say(opt, case_line(k + 1, cases.size(), res.cases[k]));
     update();
@@ -952,7 +954,7 @@ StabilityResult stability(const Options& opt, const CaseInput& spec, const Stabi
                            " s");
         }
       };
-      const RunData d = run_case(src, st, s.channels, check);
+      const RunData d = run_case(src, st, s.channels, check, opt.stop);
       ++p.runs;
       const bool ok = d.status == "completed";
       why = ok ? "" : d.message;

@@ -576,3 +576,23 @@ TEST(RunFaults, SummaryJsonValidForAnySceneName) {
   EXPECT_TRUE(contains(text, "\\u0000\\u0001")) << text;
   EXPECT_TRUE(contains(text, "\xef\xbf\xbd")) << text;
 }
+
+TEST(RunFaults, StudyStopsOnSigtermWithItsOutputs) {
+  // evas study ends like evas run: exit 128 + N, the cases run so far written.
+  TempFolder tmp;
+  const fs::path out = tmp.path() / "study";
+  const pid_t pid = spawn_evas({"study", "work-precision", sparse_scene(tmp.path()).string(),
+                                "--case", "ida rtol=1e-3,1e-4", "--out", out.string(), "--quiet"},
+                               tmp.path() / "log");
+  std::this_thread::sleep_for(std::chrono::milliseconds(1500));  // into the reference run
+  const auto t0 = Clock::now();
+  kill(pid, SIGTERM);
+  const int code = wait_code(pid);
+  const double stop_seconds = seconds_since(t0);
+  const std::string log = read_text(tmp.path() / "log");
+  EXPECT_EQ(code, 128 + SIGTERM) << log;
+  EXPECT_TRUE(contains(log, "interrupted")) << log;
+  EXPECT_LT(stop_seconds, 5.0);  // after the current step, not the whole run
+  std::printf("[ measured ] evas study on SIGTERM: exit %d, stopped %.3f s after the signal\n",
+              code, stop_seconds);
+}
