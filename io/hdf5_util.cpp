@@ -1,6 +1,8 @@
 #include "io/hdf5_util.h"
 
 #include <algorithm>
+#include <cstddef>
+#include <cstdint>
 #include <cstring>
 
 namespace evas::h5 {
@@ -82,6 +84,18 @@ std::vector<T> read_numeric(hid_t loc, const std::string& name, std::vector<hsiz
     throw Failure(dset_name(name) + " has the wrong type (expected " +
                   (integer_only ? "integers" : "numbers") + ")");
   dims = dataset_dims(dset, name);
+  // A corrupt or hostile file may declare any shape: refuse one whose values
+  // could not be held, or that claims far more data than the file stores
+  // (deflate reaches about 1000:1 on constant data; 1100 leaves a margin).
+  long double declared = 1.0L;
+  for (hsize_t d : dims) declared *= static_cast<long double>(d);
+  const long double bytes = declared * static_cast<long double>(sizeof(T));
+  const long double stored = static_cast<long double>(H5Dget_storage_size(dset));
+  if (declared > static_cast<long double>(PTRDIFF_MAX / static_cast<std::ptrdiff_t>(sizeof(T))) ||
+      (bytes > 65536.0L && bytes > 1100.0L * stored))
+    throw Failure(dset_name(name) + " declares " + std::to_string(static_cast<double>(declared)) +
+                  " values but the file stores only " +
+                  std::to_string(static_cast<long long>(stored)) + " bytes (corrupt file?)");
   hsize_t total = 1;
   for (hsize_t d : dims) total *= d;
   std::vector<T> out(static_cast<std::size_t>(total));

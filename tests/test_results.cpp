@@ -1,6 +1,7 @@
 // Results files: round trip, partial files after a failure, non-finite values
 // rejected, summary JSON and CSV export.
 #include <gtest/gtest.h>
+#include <hdf5.h>
 
 #include <cmath>
 #include <fstream>
@@ -156,5 +157,32 @@ TEST(Results, ReadErrorsNameTheFile) {
     FAIL();
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("nothing.h5"), std::string::npos);
+  }
+}
+
+TEST(Results, DeclaredShapeBeyondTheStoredDataIsRefused) {
+  // A corrupt results file whose /time declares 10^12 rows (the extendible
+  // dataset grown without data): a clear error before any allocation.
+  const std::string path = tmp_path("huge_dims.h5");
+  {
+    ResultsWriter w(path, two_channels(), options(4));
+    for (int i = 0; i < 8; ++i) w.append(1e-3 * i, {1.0, 2.0});
+    w.finish(IntegratorStats{}, "completed");
+  }
+  const hid_t f = H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+  ASSERT_GE(f, 0);
+  const hid_t d = H5Dopen2(f, "/time", H5P_DEFAULT);
+  ASSERT_GE(d, 0);
+  const hsize_t huge[1] = {1000000000000ULL};
+  ASSERT_GE(H5Dset_extent(d, huge), 0);
+  H5Dclose(d);
+  H5Fclose(f);
+  try {
+    read_results(path);
+    FAIL() << "a 10^12-row /time was read";
+  } catch (const InputError& e) {
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find("huge_dims.h5"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("declares"), std::string::npos) << msg;
   }
 }
