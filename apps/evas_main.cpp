@@ -5,6 +5,7 @@
 #include <iostream>
 
 #include "apps/commands.h"
+#include "integrators/plugin.h"
 #include "solver/types.h"
 
 namespace {
@@ -22,7 +23,30 @@ const char* kUsage =
     "  spectrum RESULTS.h5 order spectrum of a channel over whole engine cycles\n"
     "  study SUB SCENE     compare integrators: work-precision, convergence, stability\n"
     "\n"
-    "`evas <command> --help` describes the options of each command.\n";
+    "`evas <command> --help` describes the options of each command.\n"
+    "`--plugin SPEC` (any command, repeatable) and EVAS_PLUGINS load integrator\n"
+    "plug-ins (docs/extending.md).\n";
+
+// Integrator plug-ins (integrators/plugin.h): every `--plugin SPEC` (or
+// `--plugin=SPEC`) after the command is taken out of the arguments and loaded,
+// as are those named in EVAS_PLUGINS, before the command sees its options.
+void load_plugins(std::vector<std::string>& args) {
+  evas::load_env_plugins();
+  std::vector<std::string> rest;
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    const std::string& a = args[i];
+    if (i > 0 && a == "--plugin") {
+      if (i + 1 >= args.size())
+        throw evas::InputError("--plugin needs a value: a path to a .so file or a plug-in name");
+      evas::load_plugin(args[++i]);
+    } else if (i > 0 && a.rfind("--plugin=", 0) == 0) {
+      evas::load_plugin(a.substr(9));
+    } else {
+      rest.push_back(a);
+    }
+  }
+  args = std::move(rest);
+}
 
 }  // namespace
 
@@ -37,8 +61,9 @@ int main(int argc, char** argv) {
     std::cout << "evas 0.1.0\n";
     return 0;
   }
-  const std::vector<std::string> args(argv + 1, argv + argc);
+  std::vector<std::string> args(argv + 1, argv + argc);
   try {
+    load_plugins(args);
     if (cmd == "run") return evas::cli::cmd_run(args);
     if (cmd == "info") return evas::cli::cmd_info(args);
     if (cmd == "export") return evas::cli::cmd_export(args);

@@ -118,8 +118,18 @@ class Integrator {
   StepMonitor monitor_;
 };
 
-/// Names accepted by make_integrator.
+/// Names accepted by make_integrator: the built-in four, then those registered.
 std::vector<std::string> integrator_names();
+/// Makes a new integrator (one per run).
+using IntegratorFactory = std::function<std::unique_ptr<Integrator>()>;
+/// Adds an integrator under `name` (1 to 64 of a-z, 0-9, '-', '_', '.'), e.g.
+/// from a plug-in's entry point (integrators/plugin.h), after which it is used by
+/// name like a built-in one (scenes, `evas run --integrator`, studies, problems).
+/// Throws InputError when the name is invalid or taken.
+void register_integrator(const std::string& name, IntegratorFactory factory,
+                         const std::string& description = "");
+/// The one-line description given at registration ("" if none).
+std::string integrator_description(const std::string& name);
 /// Throws InputError naming the integrator when unknown.
 std::unique_ptr<Integrator> make_integrator(const std::string& name);
 

@@ -1,4 +1,7 @@
-// make_integrator / integrator_names: the integrators by name (integrator.h).
+// make_integrator / integrator_names / register_integrator: the integrators by
+// name (integrator.h). The four built-in ones are registered first; plug-ins
+// (integrators/plugin.h) add theirs at load time.
+#include <mutex>
 #include <string>
 #include <utility>
 #include <vector>
@@ -9,32 +12,81 @@ namespace evas {
 
 namespace {
 
-using Factory = std::unique_ptr<Integrator> (*)();
+struct Entry {
+  std::string name;
+  IntegratorFactory factory;
+  std::string description;
+};
 
-const std::vector<std::pair<std::string, Factory>>& registry() {
-  static const std::vector<std::pair<std::string, Factory>> table = {
-      {"ida", &make_ida_integrator},
-      {"cvode", &make_cvode_integrator},
-      {"generalized-alpha", &make_generalized_alpha_integrator},
-      {"linear-acceleration", &make_linear_acceleration_integrator},
+std::vector<Entry>& registry() {
+  static std::vector<Entry> table = {
+      {"ida", &make_ida_integrator, "IDA (SUNDIALS): variable-order BDF on the implicit residual"},
+      {"cvode", &make_cvode_integrator, "CVODE (SUNDIALS): BDF + Newton or Adams"},
+      {"generalized-alpha", &make_generalized_alpha_integrator,
+       "generalised-alpha (Chung-Hulbert 1993) on the second-order form"},
+      {"linear-acceleration", &make_linear_acceleration_integrator,
+       "the paper's linear-acceleration iteration (Newmark beta = 1/6)"},
   };
   return table;
 }
 
+std::mutex& registry_mutex() {
+  static std::mutex m;
+  return m;
+}
+
+bool valid_name(const std::string& name) {
+  if (name.empty() || name.size() > 64) return false;
+  for (char c : name)
+    if (!((c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '-' || c == '_' || c == '.'))
+      return false;
+  return true;
+}
+
 }  // namespace
 
+void register_integrator(const std::string& name, IntegratorFactory factory,
+                         const std::string& description) {
+  if (!valid_name(name))
+    throw InputError("register_integrator: '" + name +
+                     "' is not a valid integrator name (1 to 64 of a-z, 0-9, '-', '_', '.')");
+  if (!factory) throw InputError("register_integrator: '" + name + "' has no factory");
+  std::lock_guard<std::mutex> lock(registry_mutex());
+  for (const Entry& e : registry())
+    if (e.name == name)
+      throw InputError("register_integrator: an integrator named '" + name +
+                       "' is already registered");
+  registry().push_back({name, std::move(factory), description});
+}
+
 std::vector<std::string> integrator_names() {
+  std::lock_guard<std::mutex> lock(registry_mutex());
   std::vector<std::string> names;
-  for (const auto& entry : registry()) names.push_back(entry.first);
+  for (const auto& entry : registry()) names.push_back(entry.name);
   return names;
 }
 
-std::unique_ptr<Integrator> make_integrator(const std::string& name) {
+std::string integrator_description(const std::string& name) {
+  std::lock_guard<std::mutex> lock(registry_mutex());
   for (const auto& entry : registry())
-    if (entry.first == name) return entry.second();
+    if (entry.name == name) return entry.description;
+  return "";
+}
+
+std::unique_ptr<Integrator> make_integrator(const std::string& name) {
+  IntegratorFactory factory;
   std::string known;
-  for (const auto& entry : registry()) known += (known.empty() ? "" : ", ") + entry.first;
-  throw InputError("integrator '" + name + "' is unknown (known: " + known + ")");
+  {
+    std::lock_guard<std::mutex> lock(registry_mutex());
+    for (const auto& entry : registry()) {
+      if (entry.name == name) factory = entry.factory;
+      known += (known.empty() ? "" : ", ") + entry.name;
+    }
+  }
+  if (!factory) throw InputError("integrator '" + name + "' is unknown (known: " + known + ")");
+  std::unique_ptr<Integrator> integ = factory();
+  if (!integ) throw RunError("integrator '" + name + "': its factory returned nothing");
+  return integ;
 }
 
 }  // namespace evas
