@@ -80,6 +80,16 @@ void check_folder_name(const Scene& scene) {
 
 }  // namespace
 
+// A non-finite output ends the run naming the channel and the state it came from.
+void check_finite(const OutputSet& outputs, const std::vector<double>& row, double t,
+                  const System& sys, const Vec& q, const Vec& v) {
+  for (std::size_t c = 0; c < row.size(); ++c)
+    if (!std::isfinite(row[c]))
+      throw RunError("channel '" + outputs.channels()[c].name + "' is " +
+                     (std::isnan(row[c]) ? "NaN" : "infinite") + " at " +
+                     sys.describe_state(t, q.data(), v.data()));
+}
+
 int cmd_run(const std::vector<std::string>& args) {
   po::options_description opts(
       "usage: evas run SCENE.yaml [options]\n\n"
@@ -204,6 +214,7 @@ int cmd_run(const std::vector<std::string>& args) {
     integrate(*integ, sys, scene.t_start, times, [&](double t, const Vec& q, const Vec& v) {
       if (stop.due()) stop.stop(t, integ->stats().last_step);
       outputs.values(t, q.data(), v.data(), row.data());
+      check_finite(outputs, row, t, sys, q, v);
       writer.append(t, row);
       if (progress.due()) {
         const IntegratorStats st = integ->stats();
