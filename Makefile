@@ -4,7 +4,8 @@ JOBS ?= 2
 DEMO_OUT ?= demo-out
 DEBS = cmake g++ make libsundials-dev libsuitesparse-dev libeigen3-dev libspectra-dev \
        libboost-program-options-dev libgtest-dev libyaml-cpp-dev libhdf5-dev gnuplot-nox \
-       gmsh calculix-ccx
+       gmsh calculix-ccx pybind11-dev python3-dev python3-numpy python3-scipy python3-pytest \
+       python3-matplotlib
 
 .PHONY: deps build demo test bench work-precision docs format clean validate sanitize
 
@@ -17,7 +18,8 @@ deps:
 	fi
 
 build: deps
-	cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release
+	cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release -DEVAS_PYTHON=ON \
+	  -DPython3_EXECUTABLE=/usr/bin/python3
 	cmake --build $(BUILD) -j$(JOBS)
 
 demo: build
@@ -33,8 +35,11 @@ VALIDATION_OUT ?= validation-out
 validate: build
 	./validation/engine/run.sh $(BUILD) $(VALIDATION_OUT)
 
+# Every test (C++, CTest; Python, pytest), then the Python package installed
+# (scripts/install_python.sh) so that `python3 -c "import evas"` works.
 test: build
 	cd $(BUILD) && ctest --output-on-failure -j$(JOBS)
+	./scripts/install_python.sh $(BUILD)
 
 # Sanitizers and fuzzing (docs/fuzzing.md), run by CI after `make test`: the
 # sanitizer subset of the suite and the evas program under ASan + UBSan, then a

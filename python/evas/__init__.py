@@ -1,0 +1,74 @@
+"""evas from Python: a scene's model, its residual and Jacobian, and runs of any
+integrator (built in or plug-in), with NumPy arrays and SciPy sparse matrices.
+
+    import evas
+    m = evas.Model("scenes/demo.yaml")
+    q0, v0 = m.initial_state()
+    K, C = m.jacobian(0.0, q0, v0)          # scipy.sparse.csc_matrix, fixed pattern
+    r = m.run("ida", {"rtol": 1e-8})        # dict: time, values, channels, stats, status
+
+docs/extending.md describes every function.
+"""
+import os as _os
+import sys as _sys
+
+# Integrator plug-ins resolve evas's symbols against the module that loads them:
+# load the compiled part with global symbol visibility.
+_flags = _sys.getdlopenflags()
+_sys.setdlopenflags(_flags | _os.RTLD_GLOBAL)
+try:
+    from . import _evas
+finally:
+    _sys.setdlopenflags(_flags)
+
+InputError = _evas.InputError
+RunError = _evas.RunError
+integrators = _evas.integrators
+load_plugin = _evas.load_plugin
+
+__all__ = ["Model", "read_results", "integrators", "load_plugin", "InputError", "RunError"]
+
+
+def _csc(parts):
+    import scipy.sparse  # imported when first needed: `import evas` needs no SciPy
+
+    data, indices, indptr, shape = parts
+    return scipy.sparse.csc_matrix((data, indices, indptr), shape=shape)
+
+
+class Model(_evas.Model):
+    """A scene's model: the problem qdd + f(t, q, v) = 0 of its bodies and elements.
+
+    size, name, t_start, t_end, channels, output_times, settings (the scene's
+    integrator settings as text); initial_state() -> (q, v); force(t, q, v) -> f;
+    jacobian(t, q, v) -> (K, C); rhs(t, y) and rhs_jacobian(t, y) of the first-
+    order form y' = [v; -f]; residual(t, y, yd) and iteration_matrix(t, y, yd, cj)
+    = dF/dy + cj dF/dyd of F = [yd_q - v; yd_v + f] (what IDA solves);
+    outputs(t, q, v) -> the scene's output channels; run(...).
+    """
+
+    def jacobian(self, t, q, v):
+        """K = df/dq and C = df/dv as scipy.sparse.csc_matrix (fixed pattern)."""
+        K, C = self._jacobian(t, q, v)
+        return _csc(K), _csc(C)
+
+    def rhs_jacobian(self, t, y):
+        """d(rhs)/dy = [[0, I], [-K, -C]] as scipy.sparse.csc_matrix."""
+        return _csc(self._rhs_jacobian(t, y))
+
+    def iteration_matrix(self, t, y, yd, cj):
+        """dF/dy + cj dF/dyd = [[cj I, -I], [K, cj I + C]] as scipy.sparse.csc_matrix."""
+        return _csc(self._iteration_matrix(t, y, yd, cj))
+
+    def run(self, integrator="", settings=None, t_end=None):
+        """Runs the scene with an integrator (the scene's when "") and settings
+        {key: value} (evas run --help-settings); t_end overrides the scene's end.
+        Returns {time, values (rows x channels), channels, stats, status, integrator};
+        a failed run has status "failed: ..." and the rows computed so far."""
+        return self._run(integrator, dict(settings or {}), t_end)
+
+
+def read_results(path):
+    """A results file (results.h5 of evas run): {time, values, channels, units,
+    status, integrator, scene}."""
+    return _evas._read_results(path)

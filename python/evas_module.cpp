@@ -1,0 +1,283 @@
+// The compiled part of the Python package `evas` (python/evas/__init__.py):
+// a scene's model (its size, initial state, f, K, C, the first-order residual
+// and its iteration matrix), runs of any integrator (built in or plug-in) and
+// results files, with NumPy arrays (pybind11). Sparse matrices cross as their
+// compressed-column parts (data, indices, indptr, shape); the Python side makes
+// them scipy.sparse.csc_matrix. docs/extending.md documents the API.
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <chrono>
+#include <cmath>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "integrators/integrator.h"
+#include "integrators/plugin.h"
+#include "integrators/settings.h"
+#include "io/outputs.h"
+#include "io/results.h"
+#include "io/scene.h"
+#include "solver/system.h"
+
+namespace py = pybind11;
+using evas::SpMat;
+using evas::Vec;
+
+namespace {
+
+using Array = py::array_t<double, py::array::c_style | py::array::forcecast>;
+
+Vec to_vec(const Array& a, long n, const char* what) {
+  if (a.ndim() != 1 || a.shape(0) != n)
+    throw evas::InputError(std::string(what) + ": expected a vector of length " +
+                           std::to_string(n));
+  return Eigen::Map<const Vec>(a.data(), n);
+}
+
+Array to_array(const Vec& v) {
+  Array a(v.size());
+  std::copy(v.data(), v.data() + v.size(), a.mutable_data());
+  return a;
+}
+
+// (data, indices, indptr, (rows, cols)) of a compressed-column matrix
+py::tuple csc_parts(const SpMat& A) {
+  SpMat c = A;
+  c.makeCompressed();
+  Array data(c.nonZeros());
+  py::array_t<long> indices(c.nonZeros()), indptr(c.cols() + 1);
+  for (long k = 0; k < c.nonZeros(); ++k) {
+    data.mutable_data()[k] = c.valuePtr()[k];
+    indices.mutable_data()[k] = c.innerIndexPtr()[k];
+  }
+  for (long k = 0; k <= c.cols(); ++k) indptr.mutable_data()[k] = c.outerIndexPtr()[k];
+  return py::make_tuple(data, indices, indptr, py::make_tuple(c.rows(), c.cols()));
+}
+
+class Model {
+ public:
+  explicit Model(const std::string& path)
+      : scene_(evas::read_scene(path)),
+        sys_(std::make_unique<evas::System>(*scene_.model)),
+        out_(std::make_unique<evas::OutputSet>(scene_.output, *sys_, scene_.t_start,
+                                               scene_.t_end)),
+        n_(sys_->size()),
+        K_(sys_->jacobian_pattern()),
+        C_(sys_->jacobian_pattern()),
+        f_(n_) {}
+
+  int size() const { return n_; }
+  std::string name() const { return scene_.name; }
+  double t_start() const { return scene_.t_start; }
+  double t_end() const { return scene_.t_end; }
+  std::vector<std::string> channels() const {
+    std::vector<std::string> names;
+    for (const auto& c : out_->channels()) names.push_back(c.name);
+    return names;
+  }
+  std::vector<double> output_times() const { return out_->times(); }
+  std::map<std::string, std::string> settings() const {
+    std::map<std::string, std::string> m;
+    for (const auto& s : evas::integrator_settings())
+      m[s.key] = evas::get_integrator_setting(scene_.integrator, s.key);
+    return m;
+  }
+
+  py::tuple initial_state() const {
+    Vec q, v;
+    sys_->initial_state(q, v);
+    return py::make_tuple(to_array(q), to_array(v));
+  }
+
+  Array force(double t, const Array& q, const Array& v) {
+    const Vec qq = to_vec(q, n_, "q"), vv = to_vec(v, n_, "v");
+    sys_->force(t, qq.data(), vv.data(), f_.data());
+    return to_array(f_);
+  }
+
+  py::tuple jacobian(double t, const Array& q, const Array& v) {
+    const Vec qq = to_vec(q, n_, "q"), vv = to_vec(v, n_, "v");
+    sys_->force_jacobian(t, qq.data(), vv.data(), K_, C_);
+    return py::make_tuple(csc_parts(K_), csc_parts(C_));
+  }
+
+  // y' = [v; -f(t, q, v)]
+  Array rhs(double t, const Array& y) {
+    const Vec yy = to_vec(y, 2 * n_, "y");
+    sys_->force(t, yy.data(), yy.data() + n_, f_.data());
+    Vec r(2 * n_);
+    r << yy.tail(n_), -f_;
+    return to_array(r);
+  }
+
+  // d(rhs)/dy = [0 I; -K -C]
+  py::tuple rhs_jacobian(double t, const Array& y) {
+    const Vec yy = to_vec(y, 2 * n_, "y");
+    sys_->force_jacobian(t, yy.data(), yy.data() + n_, K_, C_);
+    return csc_parts(block(0.0, 1.0, -1.0));
+  }
+
+  // F(t, y, y') = [y'_q - v; y'_v + f(t, q, v)] (the residual IDA solves)
+  Array residual(double t, const Array& y, const Array& yd) {
+    const Vec yy = to_vec(y, 2 * n_, "y"), dd = to_vec(yd, 2 * n_, "yd");
+    sys_->force(t, yy.data(), yy.data() + n_, f_.data());
+    Vec r(2 * n_);
+    r << dd.head(n_) - yy.tail(n_), dd.tail(n_) + f_;
+    return to_array(r);
+  }
+
+  // dF/dy + cj dF/dy' = [cj I, -I; K, cj I + C]
+  py::tuple iteration_matrix(double t, const Array& y, const Array& yd, double cj) {
+    const Vec yy = to_vec(y, 2 * n_, "y");
+    (void)to_vec(yd, 2 * n_, "yd");
+    sys_->force_jacobian(t, yy.data(), yy.data() + n_, K_, C_);
+    return csc_parts(block(cj, -1.0, 1.0));
+  }
+
+  Array outputs(double t, const Array& q, const Array& v) {
+    const Vec qq = to_vec(q, n_, "q"), vv = to_vec(v, n_, "v");
+    Vec row(out_->size());
+    out_->values(t, qq.data(), vv.data(), row.data());
+    return to_array(row);
+  }
+
+  // Runs the scene with an integrator; returns a dict of NumPy arrays and stats.
+  py::dict run(const std::string& integrator, const std::map<std::string, py::object>& settings,
+               py::object t_end) {
+    evas::IntegratorSettings s = scene_.integrator;
+    if (!integrator.empty()) s.name = integrator;
+    for (const auto& kv : settings)
+      evas::set_integrator_setting(s, kv.first, py::str(kv.second).cast<std::string>());
+    const double tend = t_end.is_none() ? scene_.t_end : t_end.cast<double>();
+    evas::System sys(*scene_.model);
+    evas::OutputSet out(scene_.output, sys, scene_.t_start, tend);
+    std::vector<double> times = out.times(), tout;
+    std::vector<double> rows;
+    Vec row(out.size());
+    auto record = [&](double t, const double* q, const double* v) {
+      out.values(t, q, v, row.data());
+      tout.push_back(t);
+      rows.insert(rows.end(), row.data(), row.data() + row.size());
+    };
+    Vec q0, v0;
+    sys.initial_state(q0, v0);
+    if (!times.empty() && times.front() <= scene_.t_start) {
+      record(scene_.t_start, q0.data(), v0.data());
+      times.erase(times.begin());
+    }
+    auto integ = evas::make_integrator(s.name);
+    std::string status = "completed";
+    {
+      py::gil_scoped_release release;
+      try {
+        integ->init(sys, scene_.t_start, q0, v0, s);
+        evas::integrate(*integ, sys, scene_.t_start, times,
+                        [&](double t, const Vec& q, const Vec& v) { record(t, q.data(), v.data()); });
+      } catch (const std::exception& e) {
+        status = std::string("failed: ") + e.what();
+      }
+    }
+    const evas::IntegratorStats st = integ->stats();
+    py::dict stats;
+    stats["steps"] = st.steps;
+    stats["residual_evals"] = st.residual_evals;
+    stats["jacobian_evals"] = st.jacobian_evals;
+    stats["linear_setups"] = st.linear_setups;
+    stats["linear_solves"] = st.linear_solves;
+    stats["nonlinear_iterations"] = st.nonlinear_iterations;
+    stats["error_test_failures"] = st.error_test_failures;
+    stats["convergence_failures"] = st.convergence_failures;
+    stats["wall_seconds"] = st.wall_seconds;
+    stats["min_step"] = st.min_step;
+    stats["max_step"] = st.max_step;
+    const long nc = out.size(), nr = static_cast<long>(tout.size());
+    py::array_t<double> values({nr, nc});
+    std::copy(rows.begin(), rows.end(), values.mutable_data());
+    py::dict d;
+    d["time"] = py::array_t<double>(static_cast<long>(tout.size()), tout.data());
+    d["values"] = values;
+    std::vector<std::string> names;
+    for (const auto& c : out.channels()) names.push_back(c.name);
+    d["channels"] = names;
+    d["stats"] = stats;
+    d["status"] = status;
+    d["integrator"] = s.name;
+    return d;
+  }
+
+ private:
+  // [a I, b I; c K, a I + c C] with the pattern of K (and C)
+  SpMat block(double a, double b, double c) const {
+    std::vector<Eigen::Triplet<double>> tr;
+    for (int i = 0; i < n_; ++i) {
+      if (a != 0.0) tr.emplace_back(i, i, a);
+      tr.emplace_back(i, n_ + i, b);
+      if (a != 0.0) tr.emplace_back(n_ + i, n_ + i, a);
+    }
+    for (int col = 0; col < n_; ++col) {
+      for (SpMat::InnerIterator it(K_, col); it; ++it)
+        tr.emplace_back(n_ + static_cast<int>(it.row()), col, c * it.value());
+      for (SpMat::InnerIterator it(C_, col); it; ++it)
+        tr.emplace_back(n_ + static_cast<int>(it.row()), n_ + col, c * it.value());
+    }
+    SpMat A(2 * n_, 2 * n_);
+    A.setFromTriplets(tr.begin(), tr.end());
+    return A;
+  }
+
+  evas::Scene scene_;
+  std::unique_ptr<evas::System> sys_;
+  std::unique_ptr<evas::OutputSet> out_;
+  int n_;
+  SpMat K_, C_;
+  Vec f_;
+};
+
+py::dict read_results(const std::string& path) {
+  const evas::ResultsData r = evas::read_results(path);
+  py::dict d;
+  d["time"] = py::array_t<double>(static_cast<long>(r.time.size()), r.time.data());
+  py::array_t<double> values({static_cast<long>(r.values.rows()), static_cast<long>(r.values.cols())});
+  for (long i = 0; i < r.values.rows(); ++i)
+    for (long j = 0; j < r.values.cols(); ++j) values.mutable_at(i, j) = r.values(i, j);
+  d["values"] = values;
+  d["channels"] = r.names;
+  d["units"] = r.units;
+  d["status"] = r.status;
+  d["integrator"] = r.integrator;
+  d["scene"] = r.scene;
+  return d;
+}
+
+}  // namespace
+
+PYBIND11_MODULE(_evas, m) {
+  m.doc() = "evas: engine vibration analysis models and integrators (compiled part)";
+  py::register_exception<evas::InputError>(m, "InputError", PyExc_ValueError);
+  py::register_exception<evas::RunError>(m, "RunError", PyExc_RuntimeError);
+  py::class_<Model>(m, "Model")
+      .def(py::init<const std::string&>(), py::arg("scene"))
+      .def_property_readonly("size", &Model::size)
+      .def_property_readonly("name", &Model::name)
+      .def_property_readonly("t_start", &Model::t_start)
+      .def_property_readonly("t_end", &Model::t_end)
+      .def_property_readonly("channels", &Model::channels)
+      .def_property_readonly("output_times", &Model::output_times)
+      .def_property_readonly("settings", &Model::settings)
+      .def("initial_state", &Model::initial_state)
+      .def("force", &Model::force, py::arg("t"), py::arg("q"), py::arg("v"))
+      .def("_jacobian", &Model::jacobian)
+      .def("rhs", &Model::rhs, py::arg("t"), py::arg("y"))
+      .def("_rhs_jacobian", &Model::rhs_jacobian)
+      .def("residual", &Model::residual, py::arg("t"), py::arg("y"), py::arg("yd"))
+      .def("_iteration_matrix", &Model::iteration_matrix)
+      .def("outputs", &Model::outputs, py::arg("t"), py::arg("q"), py::arg("v"))
+      .def("_run", &Model::run);
+  m.def("_read_results", &read_results);
+  m.def("integrators", &evas::integrator_names, "names of the integrators (built in and loaded)");
+  m.def("load_plugin", &evas::load_plugin, py::arg("spec"),
+        "loads an integrator plug-in; returns the names it registered");
+}

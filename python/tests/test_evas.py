@@ -1,0 +1,159 @@
+"""pytest suite of the Python module (python/evas): the model's f, K, C and the
+first-order residual and iteration matrix against finite differences, runs of
+built-in and plug-in integrators, SciPy's implicit solvers on evas's right-hand
+side and Jacobian against IDA, results files, errors."""
+import os
+import subprocess
+import tempfile
+
+import numpy as np
+import pytest
+import scipy.integrate
+
+import evas
+
+SRC = os.environ["EVAS_SOURCE_DIR"]
+DEMO = os.path.join(SRC, "scenes", "demo.yaml")
+
+
+@pytest.fixture(scope="module")
+def model():
+    return evas.Model(DEMO)
+
+
+def state(m, seed=1):
+    """The initial state, perturbed so that every element is loaded."""
+    rng = np.random.default_rng(seed)
+    q, v = m.initial_state()
+    return q + 1e-6 * rng.standard_normal(m.size), v + 1e-3 * rng.standard_normal(m.size)
+
+
+def test_model_basics(model):
+    assert model.size == 28 and model.name == "demo"
+    q, v = model.initial_state()
+    assert q.shape == (28,) and v.shape == (28,)
+    assert model.force(0.0, q, v).shape == (28,)
+    assert len(model.channels) == 30 and model.t_end == pytest.approx(0.15)
+    assert model.settings["rtol"] != ""
+
+
+def test_jacobian_against_differences(model):
+    t = 0.01
+    q, v = state(model)
+    K, C = model.jacobian(t, q, v)
+    assert K.format == "csc" and K.shape == (28, 28)
+    f0 = model.force(t, q, v)
+    Kd, Cd = np.zeros((28, 28)), np.zeros((28, 28))
+    for j in range(28):
+        hq, hv = 1e-9, 1e-6  # modal coordinates ~1e-6, velocities ~1e-3
+        dq, dv = np.zeros(28), np.zeros(28)
+        dq[j], dv[j] = hq, hv
+        Kd[:, j] = (model.force(t, q + dq, v) - model.force(t, q - dq, v)) / (2 * hq)
+        Cd[:, j] = (model.force(t, q, v + dv) - model.force(t, q, v - dv)) / (2 * hv)
+    scale_k = np.abs(Kd).max()
+    scale_c = np.abs(Cd).max()
+    # measured 3.7e-9 and 5.7e-12 of the largest entry
+    assert np.abs(K.toarray() - Kd).max() < 1e-6 * scale_k
+    assert np.abs(C.toarray() - Cd).max() < 1e-6 * scale_c
+    assert f0.shape == (28,)
+
+
+def test_residual_and_iteration_matrix(model):
+    t, cj = 0.01, 3.0e4
+    q, v = state(model, 2)
+    y = np.concatenate([q, v])
+    yd = model.rhs(t, y)
+    # the residual vanishes on the right-hand side: F(t, y, rhs(t, y)) = 0
+    assert np.abs(model.residual(t, y, yd)).max() < 1e-9 * np.abs(yd).max()
+    J = model.iteration_matrix(t, y, yd, cj).toarray()
+    # dF/dy + cj dF/dyd by central differences of the residual
+    Jd = np.zeros((56, 56))
+    for j in range(56):
+        h = 1e-9 if j < 28 else 1e-6
+        e = np.zeros(56)
+        e[j] = h
+        Jd[:, j] = (model.residual(t, y + e, yd) - model.residual(t, y - e, yd)) / (2 * h)
+        Jd[:, j] += cj * (model.residual(t, y, yd + e) - model.residual(t, y, yd - e)) / (2 * h)
+    assert np.abs(J - Jd).max() < 1e-5 * np.abs(Jd).max()
+    A = model.rhs_jacobian(t, y).toarray()
+    assert np.allclose(A[:28, 28:], np.eye(28)) and np.abs(A[:28, :28]).max() == 0
+
+
+def test_run_builtin_integrators_agree(model):
+    ref = model.run("ida", {"rtol": 1e-10, "atol": 1e-13}, t_end=0.01)
+    assert ref["status"] == "completed" and ref["values"].shape == (21, 30)
+    peak = np.abs(ref["values"]).max(axis=0)
+    peak[peak == 0] = 1.0
+    for name, settings in [("cvode", {"rtol": 1e-8}), ("generalized-alpha", {"step": 2e-6})]:
+        r = model.run(name, settings, t_end=0.01)
+        assert r["status"] == "completed", r["status"]
+        assert r["stats"]["steps"] > 0
+        assert (np.abs(r["values"] - ref["values"]) / peak).max() < 1e-3, name
+
+
+def test_plugin_integrator_from_python(model):
+    assert evas.load_plugin(os.environ["EVAS_RADAU_PLUGIN"]) == ["radau-iia"]
+    assert "radau-iia" in evas.integrators()
+    ref = model.run("ida", {"rtol": 1e-10, "atol": 1e-13}, t_end=0.01)
+    r = model.run("radau-iia", {"step": 1e-5}, t_end=0.01)
+    peak = np.abs(ref["values"]).max(axis=0)
+    peak[peak == 0] = 1.0
+    # measured 3.9e-5 of the channel peaks (Radau IIA is order 3; tests/test_plugins.cpp)
+    assert (np.abs(r["values"] - ref["values"]) / peak).max() < 1e-4
+
+
+@pytest.mark.parametrize("method", ["Radau", "BDF"])
+def test_scipy_on_evas_rhs_and_jacobian(model, method):
+    """SciPy's implicit solvers (Hairer-Wanner's Radau5; a variable-order BDF) on
+    y' = rhs(t, y) with evas's analytic Jacobian reach IDA's answer."""
+    t_end = 0.005
+    ref = model.run("ida", {"rtol": 1e-10, "atol": 1e-13}, t_end=t_end)
+    q0, v0 = model.initial_state()
+    times = ref["time"]
+    sol = scipy.integrate.solve_ivp(model.rhs, (0.0, t_end), np.concatenate([q0, v0]),
+                                    method=method, t_eval=times, rtol=1e-8, atol=1e-11,
+                                    jac=lambda t, y: model.rhs_jacobian(t, y))
+    assert sol.success, sol.message
+    rows = np.array([model.outputs(t, y[:28], y[28:]) for t, y in zip(sol.t, sol.y.T)])
+    peak = np.abs(ref["values"]).max(axis=0)
+    peak[peak == 0] = 1.0
+    err = (np.abs(rows - ref["values"]) / peak).max()
+    assert err < 1e-4, err
+
+
+def test_read_results_of_an_evas_run():
+    with tempfile.TemporaryDirectory() as tmp:
+        out = os.path.join(tmp, "out")
+        subprocess.run([os.environ["EVAS_PROGRAM"], "run", DEMO, "--t-end", "0.01", "--out", out,
+                        "-q"], check=True)
+        r = evas.read_results(os.path.join(out, "results.h5"))
+    assert r["status"] == "completed" and r["values"].shape == (21, 30)
+    assert r["time"][-1] == pytest.approx(0.01)
+    assert len(r["units"]) == 30
+
+
+def test_errors_name_the_input(model):
+    with pytest.raises(evas.InputError, match="nowhere.yaml"):
+        evas.Model("nowhere.yaml")
+    q, v = model.initial_state()
+    with pytest.raises(evas.InputError, match="length 28"):
+        model.force(0.0, q[:3], v)
+    with pytest.raises(evas.InputError, match="unknown"):
+        model.run("no-such-integrator", {}, t_end=0.01)
+    with pytest.raises(evas.InputError):
+        model.run("ida", {"rtol": "abc"}, t_end=0.01)
+
+
+def test_scipy_work_precision_example():
+    """examples/python_scipy/work_precision.py runs and writes its table and figure."""
+    script = os.path.join(SRC, "examples", "python_scipy", "work_precision.py")
+    with tempfile.TemporaryDirectory() as tmp:
+        subprocess.run(["python3" if not os.path.exists("/usr/bin/python3") else "/usr/bin/python3",
+                        script, DEMO, "--t-end", "0.005", "--rtols", "1e-5", "--out", tmp],
+                       check=True, capture_output=True)
+        lines = open(os.path.join(tmp, "work_precision.csv")).read().splitlines()
+        assert lines[0].startswith("solver,rtol,error")
+        assert [x.split(",")[0] for x in lines[1:]] == ["ida", "scipy-Radau", "scipy-BDF"]
+        for x in lines[1:]:
+            assert float(x.split(",")[2]) < 1e-2  # every solver near the reference
+        assert os.path.getsize(os.path.join(tmp, "work_precision.png")) > 1000
