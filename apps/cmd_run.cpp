@@ -3,12 +3,14 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <exception>
 #include <filesystem>
 #include <iostream>
 #include <memory>
 
 #include "apps/commands.h"
 #include "apps/run_stop.h"
+#include "dae/consistent.h"
 #include "integrators/integrator.h"
 #include "integrators/settings.h"
 #include "io/outputs.h"
@@ -174,6 +176,29 @@ int cmd_run(const std::vector<std::string>& args) {
   const RunStop stop(max_wall);  // signals from here on end the run in order
   const std::string h5path = (dir / "results.h5").string();
 
+  // The start: a constrained system from consistent values (dae/consistent.h),
+  // and the integrator prepared before the results file is made, so that its
+  // multipliers, if it has them, get channels. A failure here is reported by
+  // the run below, with the results file and summary written as for any failure.
+  Vec q0, v0, lambda0;
+  std::exception_ptr init_error;
+  try {
+    sys.initial_state(q0, v0);
+    if (sys.constraint_count() > 0) {
+      const dae::ConsistentState cs = dae::consistent_state(sys, scene.t_start, q0, v0);
+      q0 = cs.q;
+      v0 = cs.v;
+      lambda0 = cs.lambda;
+    }
+    integ->init(sys, scene.t_start, q0, v0, set);
+    if (Vec lam; sys.constraint_count() > 0 && integ->multipliers(lam)) {
+      outputs.add_multiplier_channels();
+      lambda0 = lam;
+    }
+  } catch (...) {
+    init_error = std::current_exception();
+  }
+
   ResultsWriter::Options wopt;
   wopt.scene_text = scene.text;
   wopt.integrator = set.name;
@@ -200,20 +225,21 @@ int cmd_run(const std::vector<std::string>& args) {
     if (progress.due()) progress.draw(t, integ->stats().steps, h);
   });
   try {
+    if (init_error && q0.size() != sys.size()) std::rethrow_exception(init_error);
     if (stop.due()) stop.stop(scene.t_start, 0.0);
-    Vec q0, v0;
-    sys.initial_state(q0, v0);
     std::vector<double> times = outputs.times();
     const double eps = 1e-12 * std::max(1.0, std::abs(scene.t_start));
     if (times.front() <= scene.t_start + eps) {
-      outputs.values(scene.t_start, q0.data(), v0.data(), row.data());
+      outputs.values(scene.t_start, q0.data(), v0.data(), row.data(), lambda0.data());
       writer.append(scene.t_start, row);
       times.erase(times.begin());
     }
-    integ->init(sys, scene.t_start, q0, v0, set);
+    if (init_error) std::rethrow_exception(init_error);
     integrate(*integ, sys, scene.t_start, times, [&](double t, const Vec& q, const Vec& v) {
       if (stop.due()) stop.stop(t, integ->stats().last_step);
-      outputs.values(t, q.data(), v.data(), row.data());
+      Vec lam;
+      const bool with_lam = outputs.has_multiplier_channels() && integ->multipliers(lam);
+      outputs.values(t, q.data(), v.data(), row.data(), with_lam ? lam.data() : nullptr);
       check_finite(outputs, row, t, sys, q, v);
       writer.append(t, row);
       if (progress.due()) {

@@ -7,6 +7,10 @@
 // Stepping, landing on stops and dense output work as in ida.cpp: CV_ONE_STEP
 // inside advance(), CVodeSetStopTime for stops (and for the next stop of the
 // problem when not landing), CVodeGetDky for interpolated outputs.
+//
+// CVODE integrates ODEs with M = I only: a problem with a mass matrix is
+// refused, and so is a constrained one unless formulation=penalty, which runs
+// the ODE of dae/penalty.h (constraint forces G^T (k g + c g')).
 #include <cvode/cvode.h>
 #include <cvode/cvode_ls.h>
 #include <sunnonlinsol/sunnonlinsol_fixedpoint.h>
@@ -15,6 +19,8 @@
 #include <memory>
 #include <string>
 
+#include "dae/constraint_stats.h"
+#include "dae/penalty.h"
 #include "integrators/common.h"
 #include "integrators/sundials_util.h"
 #include "solver/first_order.h"
@@ -41,7 +47,23 @@ class CvodeIntegrator final : public Integrator {
     n_ = p.size();
     newton_ = s.method == "bdf";
     total_ = IntegratorStats{};
-    form_ = std::make_unique<FirstOrderForm>(p);
+    form_.reset();
+    penalty_.reset();
+    Problem* model = &p;
+    if (const int m = p.constraint_count(); m > 0) {
+      if (s.formulation != "penalty")
+        throw InputError("cvode: the problem has " + std::to_string(m) +
+                         " constraint equation(s) (first: '" + p.constraint_name(0) +
+                         "') and cvode integrates ODEs only; use ida, generalized-alpha or "
+                         "linear-acceleration, or set formulation=penalty");
+      penalty_ = std::make_unique<dae::PenaltyProblem>(p, s.penalty_stiffness, s.penalty_damping);
+      model = penalty_.get();
+    }
+    if (model->has_mass())
+      throw InputError(
+          "cvode: the problem has a mass matrix (M != I), which cvode's explicit form "
+          "v' = -f cannot take; use ida, generalized-alpha or linear-acceleration");
+    form_ = std::make_unique<FirstOrderForm>(*model);
     J_ = form_->rhs_pattern();
 
     y_.create(2 * n_, ctx_);
@@ -103,6 +125,7 @@ class CvodeIntegrator final : public Integrator {
       get_state(y_.data(), q, v);
     }
     t_ = tout;
+    if (p_->constraint_count() > 0) dae::note_constraints(*p_, tout, q, v, total_);
   }
 
   void restart(double t, const Vec& q, const Vec& v) override {
@@ -233,6 +256,7 @@ class CvodeIntegrator final : public Integrator {
   sundials::Vector y_, ytmp_;
   sundials::LinearSystem ls_;
   sundials::NonlinearSolver nls_;
+  std::unique_ptr<dae::PenaltyProblem> penalty_;  // formulation=penalty
   std::unique_ptr<FirstOrderForm> form_;
   SpMat J_;
   Problem* p_ = nullptr;

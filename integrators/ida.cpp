@@ -6,6 +6,22 @@
 // Consistent initial values need no IDACalcIC: the mass matrix is I, so
 // yd = [v; -f(t, q, v)] exactly.
 //
+// Constrained problems and problems with a mass matrix (docs/theory.md
+// section "Constrained systems (DAE)") run on the residual of the formulation
+// chosen by settings.formulation (dae/formulation.h; default ggl), y = [q; v;
+// lambda (; mu)], with IDASetId marking q, v differential and lambda, mu
+// algebraic. Start: q, v projected onto the constraints, v' and lambda from the
+// saddle-point system (dae/consistent.h); index-1 then calls IDACalcIC
+// (IDA_YA_YDP_INIT), the only formulation whose algebraic part it can solve
+// (SUNDIALS IDA user guide, IDACalcIC: semi-explicit index-one systems). The
+// local error test leaves out lambda and mu (IDASetSuppressAlg) and, for
+// index-3, also v (error_test_id, set with IDASetId after the start; Brenan,
+// Campbell & Petzold 1996, ch. 5). The error weights of the higher-index
+// components are scaled by h^(index - 1) (IDAWFtolerances,
+// DaeForm::weight_power), which keeps round-off in g from failing the Newton
+// test at small steps. formulation=penalty runs the ODE of dae/penalty.h.
+// Problems with M = I and no constraints take the path above, unchanged.
+//
 // Stepping: IDA runs in IDA_ONE_STEP mode inside advance() so every accepted
 // step is seen (min/max step). Outputs that are not stops are interpolated
 // with IDAGetDky (the same interpolant IDA_NORMAL uses); stops are reached
@@ -19,6 +35,9 @@
 #include <memory>
 #include <string>
 
+#include "dae/constraint_stats.h"
+#include "dae/formulation.h"
+#include "dae/penalty.h"
 #include "integrators/common.h"
 #include "integrators/sundials_util.h"
 #include "solver/first_order.h"
@@ -42,19 +61,43 @@ class IdaIntegrator final : public Integrator {
     s_ = s;
     n_ = p.size();
     total_ = IntegratorStats{};
-    form_ = std::make_unique<FirstOrderForm>(p);
-    J_ = form_->residual_pattern();
+    form_.reset();
+    dae_.reset();
+    penalty_.reset();
+    Problem* model = &p;
+    auto formulation = dae::Formulation::ggl;
+    if (p.constraint_count() > 0) {
+      formulation = dae::parse_formulation(s.formulation, dae::Formulation::ggl);
+      if (formulation == dae::Formulation::penalty) {
+        penalty_ = std::make_unique<dae::PenaltyProblem>(p, s.penalty_stiffness, s.penalty_damping);
+        model = penalty_.get();
+      }
+    }
+    if (model->has_mass() || model->constraint_count() > 0) {
+      // (penalty: the wrapped problem has no constraints left, any formulation does)
+      const auto f = formulation == dae::Formulation::penalty ? dae::Formulation::ggl : formulation;
+      dae_ = std::make_unique<dae::DaeForm>(*model, f, s.baumgarte_alpha, s.baumgarte_beta);
+      J_ = dae_->residual_pattern();
+    } else {
+      form_ = std::make_unique<FirstOrderForm>(*model);
+      J_ = form_->residual_pattern();
+    }
+    const int size = dae_ ? dae_->size() : 2 * n_;
 
-    y_.create(2 * n_, ctx_);
-    yd_.create(2 * n_, ctx_);
-    ytmp_.create(2 * n_, ctx_);
+    y_.create(size, ctx_);
+    yd_.create(size, ctx_);
+    ytmp_.create(size, ctx_);
+    if (dae_) id_.create(size, ctx_);
     set_state(t0, q0, v0);
 
     mem_ = IDACreate(ctx_);
     if (!mem_) throw RunError("ida: IDACreate failed");
     check(IDASetErrHandlerFn(mem_, &IdaIntegrator::error_cb, this), "IDASetErrHandlerFn");
     check(IDAInit(mem_, &IdaIntegrator::residual_cb, t0, y_.get(), yd_.get()), "IDAInit");
-    check(IDASStolerances(mem_, s.rtol, s.atol), "IDASStolerances");
+    if (dae_ && dae_->m() > 0)
+      check(IDAWFtolerances(mem_, &IdaIntegrator::weights_cb), "IDAWFtolerances");
+    else
+      check(IDASStolerances(mem_, s.rtol, s.atol), "IDASStolerances");
     check(IDASetUserData(mem_, this), "IDASetUserData");
     ls_.create(s.linear_solver, J_, y_.get(), ctx_);
     check(IDASetLinearSolver(mem_, ls_.solver(), ls_.matrix()), "IDASetLinearSolver");
@@ -63,6 +106,13 @@ class IdaIntegrator final : public Integrator {
     if (s.max_order > 0) check(IDASetMaxOrd(mem_, std::min(s.max_order, 5)), "IDASetMaxOrd");
     check(IDASetMaxNumSteps(mem_, s.max_steps), "IDASetMaxNumSteps");
     t_ = t0;
+    if (dae_) start_dae(t0);
+  }
+
+  bool multipliers(Vec& lambda) const override {
+    if (!dae_ || dae_->m() == 0) return false;
+    lambda = lambda_;
+    return true;
   }
 
   void advance(double tout, bool land, Vec& q, Vec& v) override {
@@ -101,6 +151,7 @@ class IdaIntegrator final : public Integrator {
       get_state(y_.data(), q, v);
     }
     t_ = tout;
+    if (p_->constraint_count() > 0) dae::note_constraints(*p_, tout, q, v, total_);
   }
 
   void restart(double t, const Vec& q, const Vec& v) override {
@@ -112,6 +163,7 @@ class IdaIntegrator final : public Integrator {
     set_state(t, q, v);
     check(IDAReInit(mem_, t, y_.get(), yd_.get()), "IDAReInit");
     t_ = t;
+    if (dae_) start_dae(t);
   }
 
   IntegratorStats stats() const override {
@@ -129,8 +181,13 @@ class IdaIntegrator final : public Integrator {
   }
 
  private:
-  // y = [q; v], yd = [v; -f(t, q, v)] (consistent since the mass matrix is I).
+  // y = [q; v], yd = [v; -f(t, q, v)] (consistent since the mass matrix is I);
+  // DAE path: the consistent start of dae/consistent.h.
   void set_state(double t, const Vec& q, const Vec& v) {
+    if (dae_) {
+      dae_->consistent_start(t, q, v, y_.data(), yd_.data());
+      return;
+    }
     double* y = y_.data();
     for (int i = 0; i < n_; ++i) {
       y[i] = q[i];
@@ -139,13 +196,37 @@ class IdaIntegrator final : public Integrator {
     form_->rhs(t, y, yd_.data());
   }
 
-  void get_state(const double* y, Vec& q, Vec& v) const {
+  void get_state(const double* y, Vec& q, Vec& v) {
     q.resize(n_);
     v.resize(n_);
     for (int i = 0; i < n_; ++i) {
       q[i] = y[i];
       v[i] = y[n_ + i];
     }
+    if (dae_) lambda_ = Eigen::Map<const Vec>(y + 2 * n_, dae_->m());
+  }
+
+  // After IDAInit/IDAReInit on the DAE path: ids, IDACalcIC (index-1), the
+  // error-test ids, and the constraint residuals of the start.
+  void start_dae(double t0) {
+    std::copy(dae_->differential_id().data(), dae_->differential_id().data() + dae_->size(),
+              id_.data());
+    check(IDASetId(mem_, id_.get()), "IDASetId");
+    const bool algebraic = dae_->m() > 0;
+    if (algebraic) check(IDASetSuppressAlg(mem_, SUNTRUE), "IDASetSuppressAlg");
+    if (dae_->formulation() == dae::Formulation::index1 && algebraic) {
+      const double span = s_.max_step > 0.0 ? s_.max_step : 1e-3;
+      check(IDACalcIC(mem_, IDA_YA_YDP_INIT, t0 + span), "IDACalcIC");
+      check(IDAGetConsistentIC(mem_, y_.get(), yd_.get()), "IDAGetConsistentIC");
+    }
+    if (dae_->error_test_id() != dae_->differential_id()) {
+      std::copy(dae_->error_test_id().data(), dae_->error_test_id().data() + dae_->size(),
+                id_.data());
+      check(IDASetId(mem_, id_.get()), "IDASetId");
+    }
+    Vec q, v;
+    get_state(y_.data(), q, v);
+    if (p_->constraint_count() > 0) dae::note_constraints(*p_, t0, q, v, total_);
   }
 
   double current_time() const {
@@ -194,7 +275,39 @@ class IdaIntegrator final : public Integrator {
     const double* y = y_.data();
     if (IDAGetDky(mem_, tn, 0, ytmp_.get()) == IDA_SUCCESS) y = ytmp_.data();
     msg += "; state: " + p_->describe_state(tn, y, y + n_);
+    msg += where_error_is_largest();
     throw RunError(msg);
+  }
+
+  // The component with the largest weighted local error estimate of the last
+  // step (IDAGetEstLocalErrors x IDAGetErrWeights): where the step control
+  // gave up, e.g. "; largest local error: velocity of body 'block', mode 12".
+  std::string where_error_is_largest() {
+    const long size = static_cast<long>(N_VGetLength(y_.get()));
+    sundials::Vector ele, w;
+    ele.create(static_cast<int>(size), ctx_);
+    w.create(static_cast<int>(size), ctx_);
+    if (IDAGetEstLocalErrors(mem_, ele.get()) != IDA_SUCCESS ||
+        IDAGetErrWeights(mem_, w.get()) != IDA_SUCCESS)
+      return "";
+    long best = -1;
+    double worst = 0.0;
+    for (long i = 0; i < size; ++i) {
+      const double e = std::abs(ele.data()[i] * w.data()[i]);
+      if (std::isfinite(e) && e > worst) {
+        worst = e;
+        best = i;
+      }
+    }
+    if (best < 0) return "";
+    std::string what;
+    if (best < n_)
+      what = "position of " + p_->describe_coordinate(static_cast<int>(best));
+    else if (best < 2 * n_)
+      what = "velocity of " + p_->describe_coordinate(static_cast<int>(best - n_));
+    else
+      what = "algebraic variable " + std::to_string(best - 2 * n_) + " (multipliers)";
+    return "; largest local error (weighted " + format_number(worst) + "): " + what;
   }
 
   void free_memory() {
@@ -205,18 +318,43 @@ class IdaIntegrator final : public Integrator {
   static int residual_cb(realtype t, N_Vector y, N_Vector yd, N_Vector r, void* user) {
     auto* self = static_cast<IdaIntegrator*>(user);
     return self->guard_.run([&] {
-      self->form_->residual(t, N_VGetArrayPointer(y), N_VGetArrayPointer(yd),
-                            N_VGetArrayPointer(r));
+      if (self->dae_)
+        self->dae_->residual(t, N_VGetArrayPointer(y), N_VGetArrayPointer(yd),
+                             N_VGetArrayPointer(r));
+      else
+        self->form_->residual(t, N_VGetArrayPointer(y), N_VGetArrayPointer(yd),
+                              N_VGetArrayPointer(r));
     });
   }
 
-  static int jacobian_cb(realtype t, realtype cj, N_Vector y, N_Vector /*yd*/, N_Vector /*r*/,
+  static int jacobian_cb(realtype t, realtype cj, N_Vector y, N_Vector yd, N_Vector /*r*/,
                          SUNMatrix J, void* user, N_Vector, N_Vector, N_Vector) {
     auto* self = static_cast<IdaIntegrator*>(user);
     return self->guard_.run([&] {
-      self->form_->residual_jacobian(t, N_VGetArrayPointer(y), cj, self->J_);
+      if (self->dae_)
+        self->dae_->residual_jacobian(t, N_VGetArrayPointer(y), N_VGetArrayPointer(yd), cj,
+                                      self->J_);
+      else
+        self->form_->residual_jacobian(t, N_VGetArrayPointer(y), cj, self->J_);
       self->ls_.copy(self->J_, J);
     });
+  }
+
+  // Error weights 1/(rtol |y_i| + atol), times h^p_i for the higher-index
+  // components (DaeForm::weight_power); h = 0 before the first step.
+  static int weights_cb(N_Vector y, N_Vector w, void* user) {
+    auto* self = static_cast<IdaIntegrator*>(user);
+    double h = 0.0;
+    IDAGetCurrentStep(self->mem_, &h);
+    h = std::abs(h);
+    const double* yv = N_VGetArrayPointer(y);
+    double* wv = N_VGetArrayPointer(w);
+    const std::vector<int>& power = self->dae_->weight_power();
+    for (std::size_t i = 0; i < power.size(); ++i) {
+      const double base = 1.0 / (self->s_.rtol * std::abs(yv[i]) + self->s_.atol);
+      wv[i] = power[i] == 0 ? base : base * std::pow(h, power[i]);
+    }
+    return 0;
   }
 
   static void error_cb(int /*code*/, const char* module, const char* function, char* msg,
@@ -227,9 +365,12 @@ class IdaIntegrator final : public Integrator {
 
   // Declaration order matters: the context outlives everything created in it.
   sundials::Context ctx_;
-  sundials::Vector y_, yd_, ytmp_;
+  sundials::Vector y_, yd_, ytmp_, id_;
   sundials::LinearSystem ls_;
-  std::unique_ptr<FirstOrderForm> form_;
+  std::unique_ptr<dae::PenaltyProblem> penalty_;  // formulation=penalty: the ODE run
+  std::unique_ptr<FirstOrderForm> form_;          // M = I, no constraints (or penalty)
+  std::unique_ptr<dae::DaeForm> dae_;             // mass matrix or constraints
+  Vec lambda_;                                    // multipliers at the last state returned
   SpMat J_;
   Problem* p_ = nullptr;
   IntegratorSettings s_;

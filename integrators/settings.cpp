@@ -163,6 +163,26 @@ const std::vector<Entry>& table() {
              false),
       integer("max_steps", "ida, cvode", "steps allowed per output interval", &S::max_steps, 1,
               std::numeric_limits<long>::max()),
+      choice("formulation", "constrained problems",
+             "how constraints enter: default = ggl for ida, index-3 for generalized-alpha and "
+             "linear-acceleration; penalty = forces k g + c g' (an ODE, also for cvode)",
+             &S::formulation,
+             [] {
+               return std::vector<std::string>{"default", "index-3", "index-2",
+                                               "ggl",     "index-1", "penalty"};
+             }),
+      number("baumgarte_alpha", "formulation=index-1",
+             "Baumgarte damping: adds 2 alpha g' to the acceleration constraint [1/s]",
+             &S::baumgarte_alpha, 0.0, inf, false),
+      number("baumgarte_beta", "formulation=index-1",
+             "Baumgarte stiffness: adds beta^2 g to the acceleration constraint [1/s]",
+             &S::baumgarte_beta, 0.0, inf, false),
+      number("penalty_stiffness", "formulation=penalty",
+             "k of the constraint force G^T (k g + c g'), per unit of g [N/m, N m/rad]",
+             &S::penalty_stiffness, 0.0, inf, true),
+      number("penalty_damping", "formulation=penalty",
+             "c of the constraint force G^T (k g + c g'), per unit of g' [N s/m]",
+             &S::penalty_damping, 0.0, inf, false),
   };
   return t;
 }

@@ -99,9 +99,28 @@ OutputSet::OutputSet(const OutputSpec& spec, System& system, double t_start, dou
     }
     sources_.push_back(src);
   }
+  const int m = sys_.constraint_count();
+  if (m > 0) {
+    constraint_first_ = static_cast<int>(channels_.size());
+    for (int i = 0; i < m; ++i) {
+      const std::string c = sys_.constraint_name(i);
+      channels_.push_back({c + ".g", ""});
+      channels_.push_back({c + ".g_dot", ""});
+    }
+    gbuf_.resize(static_cast<std::size_t>(m));
+    gvbuf_.resize(static_cast<std::size_t>(m));
+  }
 }
 
-void OutputSet::values(double t, const double* q, const double* v, double* out) {
+void OutputSet::add_multiplier_channels() {
+  const int m = sys_.constraint_count();
+  if (m == 0 || lambda_first_ >= 0) return;
+  lambda_first_ = static_cast<int>(channels_.size());
+  for (int i = 0; i < m; ++i) channels_.push_back({sys_.constraint_name(i) + ".lambda", ""});
+}
+
+void OutputSet::values(double t, const double* q, const double* v, double* out,
+                       const double* lambda) {
   Model& model = sys_.model();
   sys_.observe(t, q, v);  // full accelerations: inertial elements report the solved ones
   if (crank_body_ >= 0) out[0] = model.bodies()[crank_body_].lof.spin_angle(t) * kDeg;
@@ -129,6 +148,18 @@ void OutputSet::values(double t, const double* q, const double* v, double* out) 
         break;
       }
     }
+  }
+  if (constraint_first_ >= 0) {
+    sys_.constraint(t, q, v, gbuf_.data(), gvbuf_.data(), nullptr);
+    for (std::size_t i = 0; i < gbuf_.size(); ++i) {
+      out[constraint_first_ + 2 * static_cast<int>(i)] = gbuf_[i];
+      out[constraint_first_ + 2 * static_cast<int>(i) + 1] = gvbuf_[i];
+    }
+  }
+  if (lambda_first_ >= 0) {
+    if (!lambda) throw RunError("output: the multipliers are missing at t = " + std::to_string(t));
+    for (std::size_t i = 0; i < gbuf_.size(); ++i)
+      out[lambda_first_ + static_cast<int>(i)] = lambda[i];
   }
 }
 

@@ -6,6 +6,10 @@
 //   {modal: b}     b.q<k> for every mode k of body b (modal coordinate)
 // On the crank-angle grid a first channel "crank_angle" [deg] holds the LOF
 // spin angle of the crank body.
+// A constrained system (Problem::constraint_count() > 0) adds, after those, per
+// constraint equation c (named by Problem::constraint_name): c.g = g(t, q) and
+// c.g_dot = G v + g_t (units of the constraint), and with
+// add_multiplier_channels() c.lambda, the multiplier.
 //
 // Output times: uniform in time (start, start + step, ... <= t_end) or the
 // times at which the crank body's spin angle reaches multiples of `step`
@@ -29,8 +33,15 @@ class OutputSet {
   /// Output times, ascending, within [t_start, t_end].
   const std::vector<double>& times() const { return times_; }
 
-  /// Channel values at (t, q, v); `out` has size(). Updates the system's markers.
-  void values(double t, const double* q, const double* v, double* out);
+  /// Appends a channel c.lambda per constraint equation (call before the
+  /// channels are used; no-op without constraints).
+  void add_multiplier_channels();
+  bool has_multiplier_channels() const { return lambda_first_ >= 0; }
+
+  /// Channel values at (t, q, v) and, with multiplier channels, the multipliers
+  /// `lambda` (m values); `out` has size(). Updates the system's markers.
+  void values(double t, const double* q, const double* v, double* out,
+              const double* lambda = nullptr);
 
  private:
   struct Source {
@@ -42,7 +53,9 @@ class OutputSet {
   std::vector<Channel> channels_;
   std::vector<Source> sources_;
   std::vector<double> times_;
-  int crank_body_ = -1;  // >= 0: channel 0 is the crank angle
+  int crank_body_ = -1;                            // >= 0: channel 0 is the crank angle
+  int constraint_first_ = -1, lambda_first_ = -1;  // >= 0: first g / lambda channel
+  std::vector<double> gbuf_, gvbuf_;
   std::vector<MarkerMotion> scratch_;
 };
 

@@ -250,6 +250,8 @@ void ResultsWriter::finish(const IntegratorStats& st, const std::string& status)
     h5::write_attribute(g, "min_step", st.min_step);
     h5::write_attribute(g, "max_step", st.max_step);
     h5::write_attribute(g, "last_order", static_cast<long long>(st.last_order));
+    h5::write_attribute(g, "max_constraint", st.max_constraint);
+    h5::write_attribute(g, "max_constraint_rate", st.max_constraint_rate);
     h5::write_attribute(file_, "status", written_status);
     h5::write_attribute(file_, "rows", static_cast<long long>(written_));
     flush_file(file_);
@@ -329,7 +331,9 @@ void write_summary_json(const std::string& path, const RunSummary& s) {
   o << "    \"last_step\": " << json_number(st.last_step) << ",\n";
   o << "    \"min_step\": " << json_number(st.min_step) << ",\n";
   o << "    \"max_step\": " << json_number(st.max_step) << ",\n";
-  o << "    \"last_order\": " << st.last_order << "\n";
+  o << "    \"last_order\": " << st.last_order << ",\n";
+  o << "    \"max_constraint\": " << json_number(st.max_constraint) << ",\n";
+  o << "    \"max_constraint_rate\": " << json_number(st.max_constraint_rate) << "\n";
   o << "  },\n";
   o << "  \"channels\": [";
   for (std::size_t c = 0; c < s.channels.size(); ++c) {

@@ -62,8 +62,7 @@ class Model {
   explicit Model(const std::string& path)
       : scene_(evas::read_scene(path)),
         sys_(std::make_unique<evas::System>(*scene_.model)),
-        out_(std::make_unique<evas::OutputSet>(scene_.output, *sys_, scene_.t_start,
-                                               scene_.t_end)),
+        out_(std::make_unique<evas::OutputSet>(scene_.output, *sys_, scene_.t_start, scene_.t_end)),
         n_(sys_->size()),
         K_(sys_->jacobian_pattern()),
         C_(sys_->jacobian_pattern()),
@@ -174,8 +173,9 @@ class Model {
       py::gil_scoped_release release;
       try {
         integ->init(sys, scene_.t_start, q0, v0, s);
-        evas::integrate(*integ, sys, scene_.t_start, times,
-                        [&](double t, const Vec& q, const Vec& v) { record(t, q.data(), v.data()); });
+        evas::integrate(
+            *integ, sys, scene_.t_start, times,
+            [&](double t, const Vec& q, const Vec& v) { record(t, q.data(), v.data()); });
       } catch (const std::exception& e) {
         status = std::string("failed: ") + e.what();
       }
@@ -240,7 +240,8 @@ py::dict read_results(const std::string& path) {
   const evas::ResultsData r = evas::read_results(path);
   py::dict d;
   d["time"] = py::array_t<double>(static_cast<long>(r.time.size()), r.time.data());
-  py::array_t<double> values({static_cast<long>(r.values.rows()), static_cast<long>(r.values.cols())});
+  py::array_t<double> values(
+      {static_cast<long>(r.values.rows()), static_cast<long>(r.values.cols())});
   for (long i = 0; i < r.values.rows(); ++i)
     for (long j = 0; j < r.values.cols(); ++j) values.mutable_at(i, j) = r.values(i, j);
   d["values"] = values;

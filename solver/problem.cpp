@@ -24,6 +24,8 @@ void Problem::constraint_jacobian(double, const double*, SpMat&) {
 const SpMat& Problem::constraint_pattern() const { return empty_pattern(); }
 std::string Problem::constraint_name(int i) const { return "g" + std::to_string(i + 1); }
 
+std::string Problem::describe_coordinate(int i) const { return "coordinate " + std::to_string(i); }
+
 std::string Problem::describe_state(double t, const double* q, const double* v) const {
   std::ostringstream os;
   os << "t = " << t << " s, n = " << size();

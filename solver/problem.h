@@ -7,7 +7,7 @@
 // Integrators that need the first-order forms use FirstOrderForm
 // (solver/first_order.h), which derives both from this interface.
 //
-// Constrained systems (DAE; docs/theory.md section 8). A problem may add a
+// Constrained systems (DAE; docs/theory.md section 10). A problem may add a
 // (possibly non-unit, configuration-dependent) mass matrix and holonomic
 // constraints, giving the general form
 //     M(q) qdd + f(t, q, v) + G(t, q)^T lambda = 0,   g(t, q) = 0,   G = dg/dq,
@@ -89,6 +89,8 @@ class Problem {
 
   /// Human-readable description of where a failure happened (element, body, state).
   virtual std::string describe_state(double t, const double* q, const double* v) const;
+  /// What coordinate i of q is, for messages (e.g. "body 'block', mode 12 (elastic, 834 Hz)").
+  virtual std::string describe_coordinate(int i) const;
 
   ProblemCounters counters;
 };

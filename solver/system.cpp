@@ -492,6 +492,22 @@ void System::reanchor(int bi, double t, double* q, double* v) {
   }
 }
 
+std::string System::describe_coordinate(int i) const {
+  for (const auto& b : model_.bodies()) {
+    if (i < b.offset || i >= b.offset + b.n()) continue;
+    const int k = i - b.offset;
+    std::ostringstream os;
+    os << "body '" << b.name << "', mode " << k;
+    if (b.data->kinds[static_cast<std::size_t>(k)] == ModeKind::Rigid)
+      os << " (rigid)";
+    else
+      os << " (elastic, " << std::sqrt(std::max(0.0, b.data->eigenvalues[k])) / (2.0 * M_PI)
+         << " Hz)";
+    return os.str();
+  }
+  return Problem::describe_coordinate(i);
+}
+
 std::string System::describe_state(double t, const double* q, const double* v) const {
   std::ostringstream os;
   os << "t = " << t << " s";

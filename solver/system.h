@@ -40,6 +40,7 @@ class System : public Problem {
   double next_stop(double t) const override;
   bool at_stop(double t, double* q, double* v) override;
   std::string describe_state(double t, const double* q, const double* v) const override;
+  std::string describe_coordinate(int i) const override;
 
   /// Marker motions at (t, q, v), accelerations at qdd = 0 (MarkerMotion::a).
   void update_markers(double t, const double* q, const double* v);

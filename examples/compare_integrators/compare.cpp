@@ -43,10 +43,9 @@ std::vector<std::vector<double>> run(const std::string& scene_path,
   }
   auto integ = evas::make_integrator(s.name);
   integ->init(sys, scene.t_start, q0, v0, s);
-  evas::integrate(*integ, sys, scene.t_start, times,
-                  [&](double t, const evas::Vec& q, const evas::Vec& v) {
-                    record(t, q.data(), v.data());
-                  });
+  evas::integrate(
+      *integ, sys, scene.t_start, times,
+      [&](double t, const evas::Vec& q, const evas::Vec& v) { record(t, q.data(), v.data()); });
   return rows;
 }
 
