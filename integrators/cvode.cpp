@@ -54,15 +54,15 @@ class CvodeIntegrator final : public Integrator {
       if (s.formulation != "penalty")
         throw InputError("cvode: the problem has " + std::to_string(m) +
                          " constraint equation(s) (first: '" + p.constraint_name(0) +
-                         "') and cvode integrates ODEs only; use ida, generalized-alpha or "
-                         "linear-acceleration, or set formulation=penalty");
+                         "') and cvode integrates ODEs only; use ida, or set "
+                         "formulation=penalty");
       penalty_ = std::make_unique<dae::PenaltyProblem>(p, s.penalty_stiffness, s.penalty_damping);
       model = penalty_.get();
     }
     if (model->has_mass())
       throw InputError(
           "cvode: the problem has a mass matrix (M != I), which cvode's explicit form "
-          "v' = -f cannot take; use ida, generalized-alpha or linear-acceleration");
+          "v' = -f cannot take; use ida");
     form_ = std::make_unique<FirstOrderForm>(*model);
     J_ = form_->rhs_pattern();
 

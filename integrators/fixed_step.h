@@ -33,8 +33,11 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <string>
 
+#include "dae/constraint_stats.h"
+#include "dae/penalty.h"
 #include "integrators/common.h"
 
 namespace evas {
@@ -51,7 +54,26 @@ class FixedStepIntegrator : public Integrator {
                        "' is unknown (fixed, substep, adaptive)");
     if (s.step_control == "adaptive" && s.max_step > 0.0 && s.max_step < s.min_step)
       throw InputError(name() + ": max_step is below min_step");
-    p_ = &p;
+    // Constraints: only as the penalty ODE (dae/penalty.h); the multiplier forms
+    // are IDA's (docs/theory.md section 10.2).
+    base_ = &p;
+    penalty_.reset();
+    Problem* model = &p;
+    if (const int m = p.constraint_count(); m > 0) {
+      if (s.formulation != "penalty")
+        throw InputError(name() + ": the problem has " + std::to_string(m) +
+                         " constraint equation(s) (first: '" + p.constraint_name(0) + "'), which " +
+                         name() +
+                         " solves only as penalty forces; set formulation=penalty (with "
+                         "penalty_stiffness), or use ida for the index-3, index-2, ggl and "
+                         "index-1 formulations");
+      penalty_ = std::make_unique<dae::PenaltyProblem>(p, s.penalty_stiffness, s.penalty_damping);
+      model = penalty_.get();
+    }
+    if (model->has_mass())
+      throw InputError(name() + ": the problem has a mass matrix (M != I), which " + name() +
+                       " does not take; use ida");
+    p_ = model;
     s_ = s;
     n_ = p.size();
     stats_ = IntegratorStats{};
@@ -131,6 +153,7 @@ class FixedStepIntegrator : public Integrator {
       interpolate(tout, q, v);
     }
     tout_last_ = tout;
+    if (penalty_) dae::note_constraints(*base_, tout, q, v, stats_);
   }
 
   void restart(double t, const Vec& q, const Vec& v) override {
@@ -173,7 +196,9 @@ class FixedStepIntegrator : public Integrator {
            " s; state: " + p_->describe_state(t, q.data(), v.data());
   }
 
-  Problem* p_ = nullptr;
+  Problem* p_ = nullptr;     // the problem stepped: base_ or its penalty form
+  Problem* base_ = nullptr;  // the problem given to init()
+  std::unique_ptr<dae::PenaltyProblem> penalty_;
   IntegratorSettings s_;
   int n_ = 0;
   IntegratorStats stats_;

@@ -18,6 +18,7 @@
 #include "solver/body_builder.h"
 #include "solver/cylinder_fit.h"
 #include "solver/modal_contract.h"
+#include "solver/system.h"
 #include "solver/truss.h"
 
 namespace evas {
@@ -208,6 +209,7 @@ class SceneReader {
   Lof read_lof(const Node& l, const std::string& item) const;
   void read_marker(const Node& m, std::size_t i, Model& model);
   void read_element(const Node& e, std::size_t i, Model& model);
+  void read_joint(const Node& e, std::size_t i, Model& model);
   IntegratorSettings read_integrator(const Node& n) const;
   OutputSpec read_output(const Node& n, const Model& model, double t_start, double t_end) const;
 
@@ -224,8 +226,8 @@ Scene SceneReader::read(const Node& root) {
     fail(root, item, "must be a mapping with keys name, bodies, markers, elements, ...");
   }
   check_keys(root, item,
-             {"name", "description", "gravity", "bodies", "markers", "elements", "integrator",
-              "time", "output"});
+             {"name", "description", "gravity", "bodies", "markers", "elements", "joints",
+              "integrator", "time", "output"});
   scene.name = root["name"] ? text(root["name"], item, "name")
                             : std::filesystem::path(file_).stem().string();
   scene.model = std::make_unique<Model>();
@@ -248,6 +250,17 @@ Scene SceneReader::read(const Node& root) {
     if (!elements.IsSequence()) fail(elements, "elements", "must be a list of elements");
     check_size(elements, "scene", "elements", kMaxSceneItems);
     for (std::size_t i = 0; i < elements.size(); ++i) read_element(elements[i], i, model);
+  }
+  if (const Node joints = root["joints"]) {
+    if (!joints.IsSequence()) fail(joints, "joints", "must be a list of joints");
+    check_size(joints, "scene", "joints", kMaxSceneItems);
+    for (std::size_t i = 0; i < joints.size(); ++i) read_joint(joints[i], i, model);
+    // what needs the frames and all joints together (geometry, dependence)
+    try {
+      const System check(model);
+    } catch (const InputError& err) {
+      fail(joints, "joints", err.what());
+    }
   }
   if (const Node integ = root["integrator"]) scene.integrator = read_integrator(integ);
 
@@ -681,6 +694,46 @@ void SceneReader::read_element(const Node& e, std::size_t i, Model& model) {
   } catch (const InputError& err) {
     const std::string msg = err.what();
     if (msg.rfind(file_ + ":", 0) == 0) throw;
+    rethrow(e, item, err);
+  }
+}
+
+void SceneReader::read_joint(const Node& e, std::size_t i, Model& model) {
+  std::string item = "joints[" + std::to_string(i) + "]";
+  expect_map(e, item);
+  const std::string name = text(require(e, "name", item), item, "name");
+  item = "joint '" + name + "'";
+  check_keys(e, item, {"name", "type", "markers", "length"});
+  Joint j;
+  j.name = name;
+  const Node type = require(e, "type", item);
+  try {
+    j.type = joint_type(text(type, item, "type"));
+  } catch (const InputError& err) {
+    fail(type, item, err.what());
+  }
+  const Node markers = require(e, "markers", item);
+  if (!markers.IsSequence() || markers.size() != 2)
+    fail(markers, item, "'markers' must be a list of two marker names" + got(markers));
+  std::vector<std::string> names;
+  for (const auto& m : model.markers()) names.push_back(m.name);
+  int idx[2] = {-1, -1};
+  for (int k = 0; k < 2; ++k) {
+    const std::string mname = text(markers[k], item, "markers");
+    for (std::size_t m = 0; m < names.size(); ++m)
+      if (names[m] == mname) idx[k] = static_cast<int>(m);
+    if (idx[k] < 0)
+      fail(markers[k], item, "no marker named '" + mname + "' (known: " + join(names) + ")");
+  }
+  j.marker1 = idx[0];
+  j.marker2 = idx[1];
+  if (const Node len = e["length"]) {
+    if (j.type != JointType::distance) fail(len, item, "'length' applies to distance joints only");
+    j.length = number_in(len, item, "length", 0.0, 1e300, true);
+  }
+  try {
+    model.add_joint(std::move(j));
+  } catch (const InputError& err) {
     rethrow(e, item, err);
   }
 }

@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "dae/consistent.h"
 #include "integrators/integrator.h"
 #include "integrators/plugin.h"
 #include "integrators/settings.h"
@@ -136,6 +137,35 @@ class Model {
     return csc_parts(block(cj, -1.0, 1.0));
   }
 
+  // Joints (solver/joint.h): m equations g(t, q) = 0 with G = dg/dq.
+  int constraint_count() const { return sys_->constraint_count(); }
+  std::vector<std::string> constraint_names() const {
+    std::vector<std::string> names;
+    for (int i = 0; i < sys_->constraint_count(); ++i) names.push_back(sys_->constraint_name(i));
+    return names;
+  }
+  // (g, g' = G v + g_t, ga) with d(g')/dt = G qdd + ga
+  py::tuple constraint(double t, const Array& q, const Array& v) {
+    const Vec qq = to_vec(q, n_, "q"), vv = to_vec(v, n_, "v");
+    const int m = sys_->constraint_count();
+    Vec g(m), gv(m), ga(m);
+    sys_->constraint(t, qq.data(), vv.data(), g.data(), gv.data(), ga.data());
+    return py::make_tuple(to_array(g), to_array(gv), to_array(ga));
+  }
+  py::tuple constraint_jacobian(double t, const Array& q) {
+    const Vec qq = to_vec(q, n_, "q");
+    SpMat G = sys_->constraint_pattern();
+    sys_->constraint_jacobian(t, qq.data(), G);
+    return csc_parts(G);
+  }
+  // Positions and velocities projected onto the constraints, and the multipliers
+  // of the consistent start (dae/consistent.h), as evas run starts.
+  py::tuple consistent_state(double t, const Array& q, const Array& v) {
+    const Vec qq = to_vec(q, n_, "q"), vv = to_vec(v, n_, "v");
+    const evas::dae::ConsistentState cs = evas::dae::consistent_state(*sys_, t, qq, vv);
+    return py::make_tuple(to_array(cs.q), to_array(cs.v), to_array(cs.lambda));
+  }
+
   Array outputs(double t, const Array& q, const Array& v) {
     const Vec qq = to_vec(q, n_, "q"), vv = to_vec(v, n_, "v");
     Vec row(out_->size());
@@ -163,6 +193,12 @@ class Model {
     };
     Vec q0, v0;
     sys.initial_state(q0, v0);
+    if (sys.constraint_count() > 0) {  // a constrained scene starts consistent, as evas run
+      const evas::dae::ConsistentState cs =
+          evas::dae::consistent_state(sys, scene_.t_start, q0, v0);
+      q0 = cs.q;
+      v0 = cs.v;
+    }
     if (!times.empty() && times.front() <= scene_.t_start) {
       record(scene_.t_start, q0.data(), v0.data());
       times.erase(times.begin());
@@ -193,6 +229,8 @@ class Model {
     stats["wall_seconds"] = st.wall_seconds;
     stats["min_step"] = st.min_step;
     stats["max_step"] = st.max_step;
+    stats["max_constraint"] = st.max_constraint;
+    stats["max_constraint_rate"] = st.max_constraint_rate;
     const long nc = out.size(), nr = static_cast<long>(tout.size());
     py::array_t<double> values({nr, nc});
     std::copy(rows.begin(), rows.end(), values.mutable_data());
@@ -275,6 +313,11 @@ PYBIND11_MODULE(_evas, m) {
       .def("_rhs_jacobian", &Model::rhs_jacobian)
       .def("residual", &Model::residual, py::arg("t"), py::arg("y"), py::arg("yd"))
       .def("_iteration_matrix", &Model::iteration_matrix)
+      .def_property_readonly("constraint_count", &Model::constraint_count)
+      .def_property_readonly("constraint_names", &Model::constraint_names)
+      .def("constraint", &Model::constraint, py::arg("t"), py::arg("q"), py::arg("v"))
+      .def("_constraint_jacobian", &Model::constraint_jacobian)
+      .def("consistent_state", &Model::consistent_state, py::arg("t"), py::arg("q"), py::arg("v"))
       .def("outputs", &Model::outputs, py::arg("t"), py::arg("q"), py::arg("v"))
       .def("_run", &Model::run);
   m.def("_read_results", &read_results);

@@ -1,6 +1,7 @@
 #include "solver/model.h"
 
 #include <cmath>
+#include <sstream>
 
 #include "solver/reduce_body.h"
 
@@ -74,6 +75,56 @@ int Model::find_marker(const std::string& name) const {
   for (std::size_t i = 0; i < markers_.size(); ++i)
     if (markers_[i].name == name) return static_cast<int>(i);
   throw InputError("no marker named '" + name + "'");
+}
+
+int Model::add_joint(Joint j) {
+  const std::string item = "joint '" + j.name + "': ";
+  for (const auto& x : joints_)
+    if (x.name == j.name) throw InputError(item + "a joint with this name is already defined");
+  for (const auto& x : elements_)
+    if (x->name() == j.name)
+      throw InputError(item +
+                       "an element has this name (joint and element names share the "
+                       "output channels, so they must differ)");
+  const int nm = static_cast<int>(markers_.size());
+  if (j.marker1 < 0 || j.marker1 >= nm || j.marker2 < 0 || j.marker2 >= nm)
+    throw InputError(item + "marker index out of range");
+  const Marker &m1 = markers_[j.marker1], &m2 = markers_[j.marker2];
+  if (j.marker1 == j.marker2) throw InputError(item + "joins marker '" + m1.name + "' to itself");
+  if (m1.on_ground())
+    throw InputError(item + "marker 1 ('" + m1.name + "') is on the ground; the first marker " +
+                     "must be on a body (its axes are the joint's axes)");
+  if (m1.body == m2.body)
+    throw InputError(item + "both markers are on body '" + bodies_[m1.body].name +
+                     "'; a joint joins two bodies or a body and the ground");
+  const auto& rows = joint_rows(j.type);
+  bool rot = false;
+  for (const auto& r : rows) rot = rot || r[0] == 'r' || r[0] == 'd';
+  for (const Marker* m : {&m1, &m2})
+    if (rot && !m->on_ground() && !m->has_rotation)
+      throw InputError(item + "a " + joint_type_name(j.type) + " joint needs the rotation of " +
+                       "marker '" + m->name + "', which has none (a single node or a collinear " +
+                       "node set); use a marker on a node set that spans an area");
+  if (j.type == JointType::distance && j.length == 0.0) {
+    // default: the distance in the reference configuration (t = 0, q = 0)
+    auto ref = [&](const Marker& m) -> Vec3 {
+      if (m.on_ground()) return m.c;
+      const LofState L = bodies_[m.body].lof.at(0.0);
+      return L.p_GL + L.R_GL * m.c;
+    };
+    j.length = (ref(m1) - ref(m2)).norm();
+  }
+  if (j.type == JointType::distance && !(j.length > 0.0 && std::isfinite(j.length)))
+    throw InputError(item + "the length of a distance joint must be > 0 (two coincident " +
+                     "points are a spherical joint); got " +
+                     [&] {
+                       std::ostringstream os;
+                       os << j.length;
+                       return os.str();
+                     }() +
+                     " m");
+  joints_.push_back(std::move(j));
+  return static_cast<int>(joints_.size()) - 1;
 }
 
 int Model::find_element(const std::string& name) const {

@@ -8,6 +8,7 @@
 
 #include "elements/element.h"
 #include "solver/invariants.h"
+#include "solver/joint.h"
 #include "solver/lof.h"
 #include "solver/marker.h"
 
@@ -37,6 +38,8 @@ class Model {
   int add_body(const std::string& name, std::shared_ptr<const ModalBody> data, const Lof& lof);
   int add_marker(Marker m);
   int add_element(std::unique_ptr<Element> e);
+  /// Adds a joint (solver/joint.h); checks its name, markers and length.
+  int add_joint(Joint j);
 
   int find_body(const std::string& name) const;     ///< throws InputError
   int find_marker(const std::string& name) const;   ///< throws InputError
@@ -46,12 +49,14 @@ class Model {
   const std::vector<Body>& bodies() const { return bodies_; }
   const std::vector<Marker>& markers() const { return markers_; }
   const std::vector<std::unique_ptr<Element>>& elements() const { return elements_; }
+  const std::vector<Joint>& joints() const { return joints_; }
   int size() const { return size_; }  ///< total number of modal coordinates
 
  private:
   std::vector<Body> bodies_;
   std::vector<Marker> markers_;
   std::vector<std::unique_ptr<Element>> elements_;
+  std::vector<Joint> joints_;
   int size_ = 0;
 };
 

@@ -110,6 +110,7 @@ System::System(Model& model) : model_(model) {
         starts[c] = static_cast<int>(it - pattern_.innerIndexPtr());
       }
     }
+  setup_joints();
 }
 
 void System::initial_state(Vec& q, Vec& v) const {

@@ -22,6 +22,7 @@
 #include <limits>
 #include <vector>
 
+#include "solver/joint.h"
 #include "solver/model.h"
 #include "solver/problem.h"
 
@@ -41,6 +42,15 @@ class System : public Problem {
   bool at_stop(double t, double* q, double* v) override;
   std::string describe_state(double t, const double* q, const double* v) const override;
   std::string describe_coordinate(int i) const override;
+
+  // Joints as constraints (solver/joint.h; implemented in solver/system_joints.cpp).
+  int constraint_count() const override { return mrows_; }
+  void constraint(double t, const double* q, const double* v, double* g, double* gv,
+                  double* ga) override;
+  void constraint_jacobian(double t, const double* q, SpMat& G) override;
+  const SpMat& constraint_pattern() const override { return gpattern_; }
+  bool constraints_linear() const override { return linear_; }
+  std::string constraint_name(int i) const override;
 
   /// Marker motions at (t, q, v), accelerations at qdd = 0 (MarkerMotion::a).
   void update_markers(double t, const double* q, const double* v);
@@ -82,8 +92,25 @@ class System : public Problem {
   void add_block(double* values, int bi, int bj, const Eigen::Ref<const Mat>& B) const;
   void reanchor(int body, double t, double* q, double* v);
 
+  struct JointWork {
+    int row0 = 0;  // first constraint row
+    JointSide s1, s2;
+    Mat G1, G2;                   // rows x n_b blocks of dg/dq
+    std::vector<int> pos1, pos2;  // value index in gpattern_ of (r, c): [r * n_b + c]
+  };
+  /// Checks the joints against the frames and each other; builds gpattern_.
+  void setup_joints();
+  /// One side of a joint (marker mi) at (t, q, v); update_lof(t) done.
+  void joint_side(int mi, const double* q, const double* v, JointSide& s) const;
+  void joint_sides(double t, const double* q, const double* v);
+
   Model& model_;
   SpMat pattern_;
+  std::vector<JointWork> jwork_;
+  SpMat gpattern_;
+  Vec zero_;  // joints: zero velocities for constraint_jacobian
+  int mrows_ = 0;
+  bool linear_ = true;
   std::vector<LofState> lof_;
   std::vector<MarkerMotion> motion_;
   std::vector<ElementWork> ework_;

@@ -45,6 +45,11 @@ class Model(_evas.Model):
     order form y' = [v; -f]; residual(t, y, yd) and iteration_matrix(t, y, yd, cj)
     = dF/dy + cj dF/dyd of F = [yd_q - v; yd_v + f] (what IDA solves);
     outputs(t, q, v) -> the scene's output channels; run(...).
+    With joints (a DAE, M qdd + f + G^T lambda = 0, g = 0): constraint_count,
+    constraint_names, constraint(t, q, v) -> (g, g', ga) with
+    d(g')/dt = G qdd + ga, constraint_jacobian(t, q) -> G, consistent_state(t,
+    q, v) -> (q, v, lambda) projected onto the constraints. residual, rhs and
+    their Jacobians are those of the unconstrained part.
     """
 
     def jacobian(self, t, q, v):
@@ -59,6 +64,10 @@ class Model(_evas.Model):
     def iteration_matrix(self, t, y, yd, cj):
         """dF/dy + cj dF/dyd = [[cj I, -I], [K, cj I + C]] as scipy.sparse.csc_matrix."""
         return _csc(self._iteration_matrix(t, y, yd, cj))
+
+    def constraint_jacobian(self, t, q):
+        """G = dg/dq (m x n) as scipy.sparse.csc_matrix (fixed pattern)."""
+        return _csc(self._constraint_jacobian(t, q))
 
     def run(self, integrator="", settings=None, t_end=None):
         """Runs the scene with an integrator (the scene's when "") and settings

@@ -157,3 +157,33 @@ def test_scipy_work_precision_example():
         for x in lines[1:]:
             assert float(x.split(",")[2]) < 1e-2  # every solver near the reference
         assert os.path.getsize(os.path.join(tmp, "work_precision.png")) > 1000
+
+
+def test_joints_from_python():
+    """A scene with a revolute joint (scenes/hinged_beam.yaml): G against central
+    differences of g, the consistent start on the constraints, and runs: IDA
+    solves the DAE with |g| at the level of its tolerances, generalized-alpha
+    refuses it unless formulation=penalty (docs/theory.md section 10.4)."""
+    m = evas.Model(os.path.join(SRC, "scenes", "hinged_beam.yaml"))
+    assert m.constraint_count == 5
+    assert m.constraint_names[0] == "pin.p.x" and m.constraint_names[4] == "pin.r.y"
+    q, v = state(m, 3)
+    g, gv, ga = m.constraint(0.01, q, v)
+    G = m.constraint_jacobian(0.01, q).toarray()
+    assert G.shape == (5, m.size)
+    np.testing.assert_allclose(gv, G @ v, atol=1e-14)  # a frame at rest: g_t = 0
+    h = 1e-7
+    Gfd = np.column_stack([(m.constraint(0.01, q + h * e, v)[0] - m.constraint(0.01, q - h * e, v)[0])
+                           / (2 * h) for e in np.eye(m.size)])
+    assert np.abs(G - Gfd).max() < 1e-8 * (1 + np.abs(G).max())
+    qc, vc, lam = m.consistent_state(0.0, q, v)
+    gc, gvc, _ = m.constraint(0.0, qc, vc)
+    assert np.abs(gc).max() < 1e-12 and np.abs(gvc).max() < 1e-12 and lam.shape == (5,)
+    r = m.run("ida", {"rtol": "1e-6"}, 0.05)
+    assert r["status"] == "completed"
+    assert r["stats"]["max_constraint"] < 1e-9
+    ga_run = m.run("generalized-alpha", {"step": "1e-4"}, 0.01)
+    assert ga_run["status"].startswith("failed") and "penalty" in ga_run["status"]
+    pen = m.run("generalized-alpha", {"step": "1e-4", "formulation": "penalty",
+                                      "penalty_stiffness": "1e8"}, 0.01)
+    assert pen["status"] == "completed" and pen["stats"]["max_constraint"] < 1e-5

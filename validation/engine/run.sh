@@ -24,6 +24,8 @@ tmp=$(mktemp -d "${TMPDIR:-/tmp}/evas-validation.XXXXXX")
 trap 'rm -rf "$tmp"' EXIT
 case1=$tmp/case1.yaml
 case2=$tmp/case2.yaml
+case3=$tmp/case3.yaml
+case4=$tmp/case4.yaml
 absolute="s|\.\./bodies/|$dir/../bodies/|g; s|\.\./data/|$dir/../data/|g"
 sed -e "$absolute" "$dir/engine.yaml" > "$case1"
 sed -e "$absolute" "$dir/engine.yaml" | awk '/# MOUNTS BEGIN/ {print; skip = 1
@@ -32,13 +34,27 @@ sed -e "$absolute" "$dir/engine.yaml" | awk '/# MOUNTS BEGIN/ {print; skip = 1
        next}
      /# MOUNTS END/ {skip = 0}
      !skip {print}' | sed -e "s/^name: engine-case1/name: engine-case2/" > "$case2"
+# Case 2 welded: the block welded to the ground at its four mount pads by fixed
+# joints (24 constraint equations; IDA solves the DAE) instead of stiff mounts.
+sed -e "$absolute" "$dir/engine.yaml" | awk '/# MOUNTS BEGIN/ {skip = 1; next}
+     /# MOUNTS END/ {skip = 0; next}
+     /element: mount1/ {next}
+     !skip {print}
+     END {print "joints:"
+          for (i = 1; i <= 4; i++)
+            printf "  - {name: weld%d, type: fixed, markers: [m%d, g%d]}\n", i, i, i}' |
+  sed -e "s/^name: engine-case1/name: engine-case2-welded/" > "$case3"
+# Case 2 ball: spherical joints at the pads (12 equations), the limit of the
+# stiff translational mounts as their stiffness grows, pad rotations free.
+sed -e "s/type: fixed/type: spherical/; s/name: engine-case2-welded/name: engine-case2-ball/" \
+  "$case3" > "$case4"
 if [ -n "$end" ]; then
-  for f in "$case1" "$case2"; do
+  for f in "$case1" "$case2" "$case3" "$case4"; do
     sed -i -e "s/^time: {start: 0, end: [0-9.e-]*}/time: {start: 0, end: $end}/" "$f"
   done
 fi
 
-for c in 1 2; do
+for c in 1 2 3 4; do
   echo "== case $c"
   eval scene=\$case$c
   /usr/bin/time -f "case $c: %e s wall, %M kB peak" "$evas" run "$scene" --out "$out/case$c" --csv
@@ -71,6 +87,31 @@ orders="0.5 1 1.5 2 3 4 6"
   done
 } > "$out/orders.md"
 echo "order table (kN, Case 1 / Case 2): $out/orders.md"
+
+# Case 2 three ways: stiff mounts, spherical joints, fixed joints at the pads;
+# amplitudes [kN] and, for the joints, the difference to the stiff mounts in %
+# of the channel's largest order.
+{
+  printf "| channel | order | mounts 1e9 N/m | spherical joints | fixed joints |\n"
+  printf "|---|---|---|---|---|\n"
+  for b in 1 2 3 4 5; do
+    for ch in fx fy; do
+      s2=$out/case2/spectrum_main$b.$ch.csv
+      s3=$out/case3/spectrum_main$b.$ch.csv
+      s4=$out/case4/spectrum_main$b.$ch.csv
+      peak=$(awk -F, 'NR > 1 && $2 > m {m = $2} END {print m}' "$s2")
+      for o in $orders; do
+        a2=$(awk -F, -v o="$o" 'NR > 1 && $1 == o {print $2}' "$s2")
+        a3=$(awk -F, -v o="$o" 'NR > 1 && $1 == o {print $2}' "$s3")
+        a4=$(awk -F, -v o="$o" 'NR > 1 && $1 == o {print $2}' "$s4")
+        awk -v c="main$b.$ch" -v o="$o" -v a="$a2" -v b="$a4" -v w="$a3" -v p="$peak" \
+          'BEGIN {printf "| %s | %s | %.2f | %.2f (%+.1f %%) | %.2f (%+.1f %%) |\n", c, o,
+                  a / 1000, b / 1000, 100 * (b - a) / p, w / 1000, 100 * (w - a) / p}'
+      done
+    done
+  done
+} > "$out/welded.md"
+echo "order table (kN, Case 2 with stiff mounts, spherical joints, fixed joints): $out/welded.md"
 
 if ! command -v gnuplot >/dev/null 2>&1; then
   echo "validation: gnuplot not found, no plots; results in $out" >&2
@@ -106,4 +147,4 @@ plot "$out/case1/spectrum_main3.fx.csv" skip 1 using (\$1-0.1):(\$2/1000) with b
      "$out/case2/spectrum_main3.fx.csv" skip 1 using (\$1+0.1):(\$2/1000) with boxes title "Case 2"
 unset multiplot
 GP
-echo "validation results: $out/case1, $out/case2, $out/main_bearing_load.png"
+echo "validation results: $out/case1, $out/case2, $out/case3 (fixed joints), $out/case4 (spherical joints), $out/main_bearing_load.png"
