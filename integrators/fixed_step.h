@@ -54,25 +54,25 @@ class FixedStepIntegrator : public Integrator {
                        "' is unknown (fixed, substep, adaptive)");
     if (s.step_control == "adaptive" && s.max_step > 0.0 && s.max_step < s.min_step)
       throw InputError(name() + ": max_step is below min_step");
-    // Constraints: only as the penalty ODE (dae/penalty.h); the multiplier forms
-    // are IDA's (docs/theory.md section 10.2).
+    // Constraints: in the integrator's own form where it has one
+    // (takes_constraints), else only as the penalty ODE (dae/penalty.h).
     base_ = &p;
     penalty_.reset();
     Problem* model = &p;
-    if (const int m = p.constraint_count(); m > 0) {
+    const bool own = takes_constraints(s);
+    if (const int m = p.constraint_count(); m > 0 && !own) {
       if (s.formulation != "penalty")
         throw InputError(name() + ": the problem has " + std::to_string(m) +
-                         " constraint equation(s) (first: '" + p.constraint_name(0) + "'), which " +
-                         name() +
-                         " solves only as penalty forces; set formulation=penalty (with "
-                         "penalty_stiffness), or use ida for the index-3, index-2, ggl and "
-                         "index-1 formulations");
+                         " constraint equation(s) (first: '" + p.constraint_name(0) + "'); " +
+                         name() + " solves constrained problems as " + constraint_forms() +
+                         ", not as formulation=" + s.formulation +
+                         " (use ida for the index-2, ggl and index-1 formulations)");
       penalty_ = std::make_unique<dae::PenaltyProblem>(p, s.penalty_stiffness, s.penalty_damping);
       model = penalty_.get();
     }
-    if (model->has_mass())
+    if (model->has_mass() && !own)
       throw InputError(name() + ": the problem has a mass matrix (M != I), which " + name() +
-                       " does not take; use ida");
+                       " takes only as " + constraint_forms() + "; use ida");
     p_ = model;
     s_ = s;
     n_ = p.size();
@@ -153,7 +153,7 @@ class FixedStepIntegrator : public Integrator {
       interpolate(tout, q, v);
     }
     tout_last_ = tout;
-    if (penalty_) dae::note_constraints(*base_, tout, q, v, stats_);
+    if (base_->constraint_count() > 0) dae::note_constraints(*base_, tout, q, v, stats_);
   }
 
   void restart(double t, const Vec& q, const Vec& v) override {
@@ -179,7 +179,21 @@ class FixedStepIntegrator : public Integrator {
   /// last start (a_prev_, h_prev_ undefined).
   virtual void local_error(double h, bool hist, Vec& eq, Vec& ev) const = 0;
 
-  /// Current state (t_, q_, v_) with a_ = -f and f_ = f(t, q, v).
+  /// True when the integrator solves constrained problems (and a mass matrix)
+  /// itself under the settings `s`, so init() hands it the problem as it is.
+  virtual bool takes_constraints(const IntegratorSettings& s) const {
+    (void)s;
+    return false;
+  }
+  /// The constrained forms it solves, for messages.
+  virtual std::string constraint_forms() const { return "penalty forces (formulation=penalty)"; }
+  /// Called after a step is accepted (the swap of q1_.. into q_.. done).
+  virtual void accepted() {}
+  /// Sets a_ (and whatever else the method carries) at the start state
+  /// (t_, q_, v_, f_); default a_ = -f.
+  virtual void start_acceleration() { a_ = -f_; }
+
+  /// Current state (t_, q_, v_) with f_ = f(t, q, v) and start_acceleration().
   void start(double t) {
     t_ = t;
     t_prev_ = t;
@@ -187,8 +201,11 @@ class FixedStepIntegrator : public Integrator {
     have_prev_ = false;
     p_->force(t, q_.data(), v_.data(), f_.data());
     ++stats_.residual_evals;
-    a_ = -f_;
+    start_acceleration();
   }
+  /// Time of the last output handed back by advance().
+  double last_output_time() const { return tout_last_; }
+  double previous_time() const { return t_prev_; }
 
   /// "time, step, state" tail of a failure message.
   std::string where(double t, double h, const Vec& q, const Vec& v) const {
@@ -239,6 +256,7 @@ class FixedStepIntegrator : public Integrator {
     ++stats_.steps;
     stats_.last_step = h;
     note_step(stats_, h);
+    accepted();
     step_done(t_, h);  // interrupts, wall-time limit, timed flushes (may throw)
   }
 
