@@ -68,8 +68,8 @@ TEST(GeneralizedAlphaDae, PendulumConvergesAtOrderTwo) {
     Errors prev;
     for (int steps : {400, 800, 1600, 3200}) {
       const Errors e = pendulum_run(steps, rho);
-      std::printf("rho %.1f  steps %5d  err q %.3e  v %.3e  lambda %.3e  max|g| %.1e\n", rho,
-                  steps, e.q, e.v, e.lambda, e.g);
+      std::printf("rho %.1f  steps %5d  err q %.3e  v %.3e  lambda %.3e  max|g| %.1e\n", rho, steps,
+                  e.q, e.v, e.lambda, e.g);
       EXPECT_EQ(e.steps, steps);
       EXPECT_LT(e.g, 1e-11);
       if (prev.steps > 0) {
