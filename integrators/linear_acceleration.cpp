@@ -21,17 +21,24 @@
 // the elements' K, C in Meff (effective-mass), or full Newton. All of them stop
 // on the same balance test, so they solve the same discrete equations.
 //
+// Constrained problems and mass matrices: formulation=index-3 (the Newmark
+// index-3 form of newmark_dae.h with alpha_m = alpha_f = 0, increment test
+// instead of the balance test; it diverges at any step, as beta = 1/6 is only
+// conditionally stable, h omega <= 3.46, and the constrained directions are
+// infinitely stiff: kept for the study of exactly that) or penalty, whose
+// stiffness k bounds the step by h <= 3.46 sqrt(m/k).
+//
 // Counters: nonlinear_iterations = updates of a; residual_evals = force
 // evaluations; jacobian_evals = body_operator (fixed point) or force_jacobian
 // evaluations; linear_setups / linear_solves = factorizations of / solves with
 // Meff (none for the fixed point when there is no body part, Meff = I).
 #include "integrators/common.h"
-#include "integrators/newmark.h"
+#include "integrators/newmark_dae.h"
 
 namespace evas {
 namespace {
 
-class LinearAcceleration final : public NewmarkIntegrator {
+class LinearAcceleration final : public NewmarkDaeIntegrator {
  public:
   std::string name() const override { return "linear-acceleration"; }
 
@@ -44,6 +51,11 @@ class LinearAcceleration final : public NewmarkIntegrator {
     p.balance = true;
     p.iteration = "fixed-point";
     return p;
+  }
+  bool index3_formulation(const std::string& f) const override { return f == "index-3"; }
+  std::string constraint_forms() const override {
+    return "formulation=index-3 (which diverges: beta = 1/6 is only conditionally stable "
+           "and a constraint is infinitely stiff; docs/theory.md section 10.5) or penalty";
   }
 };
 

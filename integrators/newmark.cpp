@@ -296,20 +296,25 @@ bool NewmarkIntegrator::fail(const std::string& why, double t1, double h, int it
 }
 
 void NewmarkIntegrator::local_error(double h, bool hist, Vec& eq, Vec& ev) const {
-  const double cq = par_.beta - 1.0 / 6.0 + 0.5 * (par_.alpha_m - par_.alpha_f);
+  estimate_local_error(par_, h, hist, h_prev_, a_, a1_, a_prev_, eq, ev);
+}
+
+void NewmarkIntegrator::estimate_local_error(const Parameters& par, double h, bool hist, double hp,
+                                             const Vec& a0, const Vec& a1, const Vec& a_prev,
+                                             Vec& eq, Vec& ev) {
+  const double cq = par.beta - 1.0 / 6.0 + 0.5 * (par.alpha_m - par.alpha_f);
   if (std::abs(cq) > 1e-12) {
-    eq = (cq * h * h) * (a1_ - a_);
+    eq = (cq * h * h) * (a1 - a0);
     ev.setZero();
     return;
   }
   // linear acceleration: fourth derivative from three accelerations
   if (!hist) {
     eq.setZero();
-    ev = (h * h / 12.0) * (a1_ - a_);
+    ev = (h * h / 12.0) * (a1 - a0);
     return;
   }
-  const double hp = h_prev_;
-  ev = ((a1_ - a_) / h - (a_ - a_prev_) / hp) * (2.0 / (h + hp));  // q''''
+  ev = ((a1 - a0) / h - (a0 - a_prev) / hp) * (2.0 / (h + hp));  // q''''
   eq = (h * h * h * h / 24.0) * ev;
   ev *= h * h * h / 12.0;
 }

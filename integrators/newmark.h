@@ -75,6 +75,11 @@ class NewmarkIntegrator : public FixedStepIntegrator {
   void setup() override;
   bool step(double t, double h) override;
   void local_error(double h, bool hist, Vec& eq, Vec& ev) const override;
+  /// The estimates above from the accelerations a_n (a0), a_{n+1} (a1) and the
+  /// one before (a_prev, step hp; used when hist).
+  static void estimate_local_error(const Parameters& par, double h, bool hist, double hp,
+                                   const Vec& a0, const Vec& a1, const Vec& a_prev, Vec& eq,
+                                   Vec& ev);
 
  private:
   enum class Iteration { FixedPoint, Anderson, EffectiveMass, Newton };

@@ -164,9 +164,9 @@ const std::vector<Entry>& table() {
       integer("max_steps", "ida, cvode", "steps allowed per output interval", &S::max_steps, 1,
               std::numeric_limits<long>::max()),
       choice("formulation", "constrained problems",
-             "how constraints enter: default = ggl for ida, index-3 for generalized-alpha; "
-             "index-2, ggl, index-1 are ida's; penalty = forces k g + c g' (an ODE: any "
-             "integrator)",
+             "how constraints enter: default = ggl for ida, index-3 for generalized-alpha "
+             "(linear-acceleration: index-3 on request, diverges); index-2, ggl, index-1 are "
+             "ida's; penalty = forces k g + c g' (an ODE: any integrator)",
              &S::formulation,
              [] {
                return std::vector<std::string>{"default", "index-3", "index-2",
