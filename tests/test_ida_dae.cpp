@@ -351,7 +351,7 @@ TEST(FixedStepDae, PenaltyOnlyAndRecordsTheConstraint) {
     IntegratorSettings s;
     s.name = name;
     s.step = 1e-4;
-    s.formulation = "ggl";  // IDA's; generalized-alpha takes index-3 (tests/test_ga_dae.cpp)
+    s.formulation = "ggl";  // IDA's; generalized-alpha takes index-3 (tests/test_newmark_dae.cpp)
     std::unique_ptr<Integrator> integ = make_integrator(name);
     Vec q, v;
     p.initial_state(q, v);
