@@ -20,7 +20,13 @@ std::vector<int> select_channels(const std::vector<Channel>& channels,
     const std::string& name = channels[i].name;
     bool take = false;
     if (pats.empty()) {
-      take = name != "crank_angle";
+      // constraint residuals (joints: NAME.ROW.g, .g_dot) are not results: they
+      // are measured by the statistics max_constraint, max_constraint_rate
+      auto ends = [&](const std::string& tail) {
+        return name.size() > tail.size() &&
+               name.compare(name.size() - tail.size(), tail.size(), tail) == 0;
+      };
+      take = name != "crank_angle" && !ends(".g") && !ends(".g_dot");
     } else {
       for (const auto& p : pats) take = take || glob_match(p, name);
     }

@@ -23,7 +23,8 @@
 namespace evas::study {
 
 /// Indices of the channels whose names match any of the comma-separated glob
-/// patterns; an empty pattern list selects every channel except crank_angle.
+/// patterns; an empty pattern list selects every channel except crank_angle and
+/// the constraint residuals (names ending in .g and .g_dot).
 /// Throws InputError listing the available names when nothing matches.
 std::vector<int> select_channels(const std::vector<Channel>& channels, const std::string& patterns);
 

@@ -27,6 +27,8 @@ const std::vector<StatField>& stat_fields() {
       {"min_step", [](const S& s) { return s.min_step; }, false},
       {"max_step", [](const S& s) { return s.max_step; }, false},
       {"last_order", [](const S& s) { return double(s.last_order); }, true},
+      {"max_constraint", [](const S& s) { return s.max_constraint; }, false},
+      {"max_constraint_rate", [](const S& s) { return s.max_constraint_rate; }, false},
   };
   return f;
 }
