@@ -312,6 +312,14 @@ TEST(StudyMeasure, ErrorIsRelativeToEachChannelsAmplitude) {
   EXPECT_EQ(select_channels(ch, "main*.fx"), (std::vector<int>{1, 3}));
   const std::string msg = input_error([&] { select_channels(ch, "cyl*"); });
   EXPECT_NE(msg.find("available: crank_angle, main1.fx"), std::string::npos) << msg;
+  // joints: residuals out by default, multipliers in; any of them by name
+  const std::vector<Channel> cj = {{"k.fx", "N"},
+                                   {"pin.p.x.g", ""},
+                                   {"pin.p.x.g_dot", ""},
+                                   {"pin.p.x.lambda", ""},
+                                   {"rig.g", ""}};
+  EXPECT_EQ(select_channels(cj, ""), (std::vector<int>{0, 3}));
+  EXPECT_EQ(select_channels(cj, "pin.*.g"), (std::vector<int>{1}));
 }
 
 // --- work-precision ------------------------------------------------------------------
