@@ -214,6 +214,12 @@ void DaeForm::gt_times(const double* w, double* out, double sign) const {
       out[c] += sign * val[e] * w[G_.innerIndexPtr()[e]];
 }
 
+void DaeForm::g_jacobian(double t, const double* q) {
+  // constant when the constraints are linear (Problem::constraints_linear)
+  if (nonlinear_ || !g_cached_) p_.constraint_jacobian(t, q, G_);
+  g_cached_ = !nonlinear_;
+}
+
 void DaeForm::residual(double t, const double* y, const double* yd, double* F) {
   const double *q = y, *v = y + n_, *lam = y + 2 * n_, *mu = y + 2 * n_ + m_;
   const double *qd = yd, *vd = yd + n_;
@@ -231,7 +237,7 @@ void DaeForm::residual(double t, const double* y, const double* yd, double* F) {
     for (int i = 0; i < n_; ++i) Fv[i] += vd[i];
   }
   if (m_ == 0) return;
-  p_.constraint_jacobian(t, q, G_);
+  g_jacobian(t, q);
   const bool want_g = f_ != Formulation::index2;
   const bool want_gv = f_ != Formulation::index3;
   const bool want_ga = f_ == Formulation::index1;
@@ -325,7 +331,7 @@ void DaeForm::residual_jacobian(double t, const double* y, const double* yd, dou
     for (int i = 0; i < n_; ++i) val[pVV_[static_cast<std::size_t>(i)]] += cj;
   }
   if (m_ > 0) {
-    p_.constraint_jacobian(t, q, G_);
+    g_jacobian(t, q);
     const double* gval = G_.valuePtr();
     for (std::size_t e = 0; e < pGtLam_.size(); ++e) {
       const double gk = gval[e];

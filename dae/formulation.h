@@ -79,12 +79,15 @@ class DaeForm {
   void nonlinear_terms(double t, const double* q, const double* v, const double* y,
                        const double* yd, Vec& out);
   void gt_times(const double* w, double* out, double sign = 1.0) const;
+  /// G at (t, q) into G_ (evaluated once when the constraints are linear).
+  void g_jacobian(double t, const double* q);
 
   Problem& p_;
   Formulation f_;
   double alpha_, beta_;
   int n_, m_, size_;
   bool mass_, nonlinear_, fd_;
+  bool g_cached_ = false;
   SpMat K_, C_, M_, G_, J_;
   Vec diff_id_, err_id_;
   std::vector<int> weight_power_;
