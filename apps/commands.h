@@ -28,5 +28,7 @@ int cmd_spectrum(const std::vector<std::string>& args);
 /// `evas study work-precision|convergence|stability` (apps/cmd_study.cpp, logic in study/).
 /// Exit codes also: 3 convergence --expect not met, 128 + N stopped by signal N.
 int cmd_study(const std::vector<std::string>& args);
+/// `evas problem NAME`: the DAE test problems (apps/cmd_problem.cpp, problems/library.h).
+int cmd_problem(const std::vector<std::string>& args);
 
 }  // namespace evas::cli

@@ -22,6 +22,7 @@ const char* kUsage =
     "  modal build|import  FE pipeline (gmsh, ccx) and CalculiX import to a modal body\n"
     "  spectrum RESULTS.h5 order spectrum of a channel over whole engine cycles\n"
     "  study SUB SCENE     compare integrators: work-precision, convergence, stability\n"
+    "  problem NAME        DAE test problems (andrews, car-axis, ...) scored in digits\n"
     "\n"
     "`evas <command> --help` describes the options of each command.\n"
     "`--plugin SPEC` (any command, repeatable) and EVAS_PLUGINS load integrator\n"
@@ -72,6 +73,7 @@ int main(int argc, char** argv) {
     if (cmd == "modal") return evas::cli::cmd_modal(args);
     if (cmd == "spectrum") return evas::cli::cmd_spectrum(args);
     if (cmd == "study") return evas::cli::cmd_study(args);
+    if (cmd == "problem") return evas::cli::cmd_problem(args);
   } catch (const boost::program_options::error& e) {
     std::cerr << "evas " << cmd << ": " << e.what() << " (see `evas " << cmd << " --help`)\n";
     return 1;

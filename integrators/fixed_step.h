@@ -6,7 +6,7 @@
 // advance(tout, land):
 //   steps are never taken across the problem's next stop, and when landing the
 //   last step is shortened to end exactly on tout. A step that would end within
-//   1e-9 h of tout is stretched/shortened to end on tout, so outputs on the step
+//   1e-6 h of tout is stretched/shortened to end on tout, so outputs on the step
 //   grid are step states, not interpolations.
 //   Outputs between steps are cubic Hermite interpolants on the bracketing step
 //   states: q from (q, v) at both ends, v from (v, a) at both ends. Both are
@@ -104,7 +104,7 @@ class FixedStepIntegrator : public Integrator {
       // h stays bit-identical to settings.step unless the step is cut (so the
       // derived classes can keep their factorizations)
       const double h_plan = adaptive ? h_ : s_.step;
-      const double snap = 1e-9 * h_plan;
+      const double snap = 1e-6 * h_plan;
       if (!(t_ < tout - snap)) break;
       double h = h_plan;
       double t_end = t_ + h;
@@ -145,7 +145,7 @@ class FixedStepIntegrator : public Integrator {
       h_ = s_.max_step > 0.0 ? std::min(h_next, s_.max_step) : h_next;
       h_ = std::max(h_, s_.min_step);
     }
-    if (std::abs(t_ - tout) <= 1e-9 * std::max(t_ - t_prev_, 1e-300)) {  // on a step
+    if (std::abs(t_ - tout) <= 1e-6 * std::max(t_ - t_prev_, 1e-300)) {  // on a step
       q = q_;
       v = v_;
     } else {

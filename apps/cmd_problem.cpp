@@ -1,0 +1,157 @@
+// `evas problem NAME`: a test problem of the library (problems/library.h) run
+// from t = 0 to its reference end point with any integrator and formulation,
+// scored in significant correct digits as the IVP Test Set scores.
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <sstream>
+
+#include "apps/commands.h"
+#include "dae/constraint_stats.h"
+#include "integrators/integrator.h"
+#include "integrators/settings.h"
+#include "problems/library.h"
+
+namespace evas::cli {
+
+namespace {
+
+std::string num(double x) {
+  std::ostringstream os;
+  os << std::setprecision(16) << x;
+  return std::isfinite(x) ? os.str() : "null";
+}
+
+void list_problems() {
+  for (const auto& p : problems::library()) {
+    const auto P = p.make();
+    std::cout << std::left << std::setw(10) << p.name << " n = " << P->size()
+              << ", m = " << P->constraint_count() << ", t_end = " << p.t_end
+              << " s: " << p.description << "\n";
+  }
+}
+
+}  // namespace
+
+int cmd_problem(const std::vector<std::string>& args) {
+  po::options_description opts(
+      "usage: evas problem NAME [options]   (evas problem --list)\n\n"
+      "Runs a test problem of the library from t = 0 to the end point of its published\n"
+      "reference with the chosen integrator and formulation, and prints the end point\n"
+      "against the reference, the mixed-error significant correct digits\n"
+      "  mescd = -log10 max_i |y_i - ref_i| / (atol/rtol + |ref_i|)\n"
+      "over positions and velocities (and over the multipliers where published), the\n"
+      "relative digits scd, and the integrator's statistics (docs/problems.md).\n"
+      "Exit codes: 0 completed, 1 bad input, 2 the integration failed.\n\noptions");
+  opts.add_options()("help,h", "show this help")("list", "list the problems")(
+      "integrator", po::value<std::string>()->default_value("ida"),
+      "ida, cvode, generalized-alpha, linear-acceleration or a loaded plug-in")(
+      "formulation", po::value<std::string>()->default_value("default"),
+      "index-3, index-2, ggl, index-1, penalty or default (the integrator's)")(
+      "rtol", po::value<std::string>()->default_value("1e-8"), "relative tolerance")(
+      "atol", po::value<std::string>(), "absolute tolerance (default rtol / 100)")(
+      "step", po::value<std::string>(),
+      "step of the fixed-step integrators (default t_end / 2000), first step of the others")(
+      "set", po::value<std::vector<std::string>>(),
+      "KEY=VALUE: any integrator setting, repeatable (evas run --help-settings)")(
+      "out", po::value<std::string>(), "folder for summary.json");
+  po::variables_map vm;
+  if (parse_args(args, opts, {"name"}, vm)) return 0;
+  if (vm.count("list")) {
+    list_problems();
+    return 0;
+  }
+  if (!vm.count("name")) throw InputError("name a problem (evas problem --list shows them)");
+  const problems::LibraryProblem& lp = problems::library_problem(vm["name"].as<std::string>());
+
+  IntegratorSettings s;
+  set_integrator_setting(s, "name", vm["integrator"].as<std::string>());
+  set_integrator_setting(s, "formulation", vm["formulation"].as<std::string>());
+  set_integrator_setting(s, "rtol", vm["rtol"].as<std::string>());
+  if (vm.count("atol"))
+    set_integrator_setting(s, "atol", vm["atol"].as<std::string>());
+  else
+    s.atol = s.rtol / 100.0;
+  s.step = lp.t_end / 2000.0;
+  if (vm.count("step")) set_integrator_setting(s, "step", vm["step"].as<std::string>());
+  if (vm.count("set"))
+    for (const auto& a : vm["set"].as<std::vector<std::string>>()) apply_setting_assignment(s, a);
+
+  auto problem = lp.make();
+  auto integ = make_integrator(s.name);
+  Vec q, v, lam;
+  problem->initial_state(q, v);
+  std::cout << "evas problem " << lp.name << ": " << lp.description << "\n"
+            << "  integrator " << s.name << ", formulation " << s.formulation << ", rtol " << s.rtol
+            << ", atol " << s.atol << "; reference: " << lp.source << "\n";
+  const auto t0 = std::chrono::steady_clock::now();
+  std::string failure;
+  try {
+    integ->init(*problem, 0.0, q, v, s);
+    integ->advance(lp.t_end, true, q, v);
+  } catch (const InputError&) {
+    throw;
+  } catch (const std::exception& e) {
+    failure = e.what();
+  }
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const IntegratorStats st = integ->stats();
+  if (!failure.empty()) {
+    std::cerr << "evas problem: FAILED: " << failure << "\n";
+    return 2;
+  }
+  if (!integ->multipliers(lam)) lam.resize(0);
+  const problems::Score sc = problems::score(lp, q, v, lam, s.rtol, s.atol);
+  double gmax = 0.0, gvmax = 0.0;
+  dae::constraint_norms(*problem, lp.t_end, q, v, gmax, gvmax);
+
+  const int n = problem->size();
+  std::cout << "  end point t = " << lp.t_end << " s:\n"
+            << "    component            value                  reference              "
+               "mixed error\n";
+  const double ratio = s.atol / s.rtol;
+  for (int i = 0; i < 2 * n; ++i) {
+    const double y = i < n ? q(i) : v(i - n), r = lp.reference_qv[static_cast<std::size_t>(i)];
+    const std::string label =
+        (i < n ? "q " : "v ") + problem->describe_coordinate(i < n ? i : i - n);
+    std::cout << "    " << std::left << std::setw(20) << label << std::right << std::setw(23)
+              << std::setprecision(15) << y << std::setw(23) << r << std::setw(12)
+              << std::setprecision(3) << std::abs(y - r) / (ratio + std::abs(r))
+              << (i == sc.worst ? "  <- worst" : "") << "\n";
+  }
+  std::cout << std::setprecision(4) << "  mescd " << std::fixed << std::setprecision(2) << sc.mescd
+            << "  scd " << sc.scd;
+  if (!std::isnan(sc.mescd_lambda)) std::cout << "  mescd(lambda) " << sc.mescd_lambda;
+  std::cout << std::defaultfloat << std::setprecision(4) << "\n  steps " << st.steps
+            << ", residuals " << st.residual_evals << ", Jacobians " << st.jacobian_evals
+            << ", factorisations " << st.linear_setups << ", error-test failures "
+            << st.error_test_failures << ", convergence failures " << st.convergence_failures
+            << ", wall " << wall << " s; at the end |g| " << gmax << ", |g'| " << gvmax << "\n";
+
+  if (vm.count("out")) {
+    const std::filesystem::path dir = vm["out"].as<std::string>();
+    std::error_code ec;
+    std::filesystem::create_directories(dir, ec);
+    std::ofstream f(dir / "summary.json");
+    if (!f) throw InputError((dir / "summary.json").string() + ": cannot write the file");
+    f << "{\n  \"problem\": \"" << lp.name << "\",\n  \"integrator\": \"" << s.name
+      << "\",\n  \"formulation\": \"" << s.formulation << "\",\n  \"rtol\": " << num(s.rtol)
+      << ",\n  \"atol\": " << num(s.atol) << ",\n  \"t_end\": " << num(lp.t_end)
+      << ",\n  \"mescd\": " << num(sc.mescd) << ",\n  \"scd\": " << num(sc.scd)
+      << ",\n  \"mescd_lambda\": " << num(sc.mescd_lambda) << ",\n  \"q\": [";
+    for (int i = 0; i < n; ++i) f << (i ? ", " : "") << num(q(i));
+    f << "],\n  \"v\": [";
+    for (int i = 0; i < n; ++i) f << (i ? ", " : "") << num(v(i));
+    f << "],\n  \"steps\": " << st.steps << ",\n  \"residual_evals\": " << st.residual_evals
+      << ",\n  \"jacobian_evals\": " << st.jacobian_evals << ",\n  \"wall_seconds\": " << num(wall)
+      << ",\n  \"max_constraint_end\": " << num(gmax) << "\n}\n";
+    if (!f) throw InputError((dir / "summary.json").string() + ": writing failed");
+    std::cout << "  summary: " << (dir / "summary.json").string() << "\n";
+  }
+  return 0;
+}
+
+}  // namespace evas::cli

@@ -1,0 +1,208 @@
+// The problem library (problems/library.h): each problem's analytic parts
+// against central differences, its start on the constraints, and IDA and
+// generalized-alpha reaching stated significant digits at the end point against
+// the published references of the Test Set for IVP Solvers (Mazzia &
+// Magherini, Bari: problems andrews and caraxis) and the pendulum's exact
+// solution; the `evas problem` command.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include "integrators/integrator.h"
+#include "integrators/settings.h"
+#include "problems/library.h"
+
+namespace evas {
+namespace {
+
+using problems::LibraryProblem;
+
+// A state near the start with every velocity and coordinate perturbed.
+void perturbed(Problem& p, Vec& q, Vec& v) {
+  p.initial_state(q, v);
+  for (int i = 0; i < q.size(); ++i) {
+    q(i) += 1e-2 * std::sin(1.0 + i);
+    v(i) += 0.5 * std::cos(2.0 + i);
+  }
+}
+
+double rel_err(const Mat& a, const Mat& b) {
+  return (a - b).cwiseAbs().maxCoeff() / (1.0 + b.cwiseAbs().maxCoeff());
+}
+
+TEST(Problems, PartsMatchDifferences) {
+  for (const LibraryProblem& lp : problems::library()) {
+    SCOPED_TRACE(lp.name);
+    auto p = lp.make();
+    const int n = p->size(), m = p->constraint_count();
+    Vec q, v;
+    perturbed(*p, q, v);
+    const double t = 0.3 * lp.t_end, h = 1e-6;
+    SpMat K = p->jacobian_pattern(), C = K, G = p->constraint_pattern(), M = p->mass_pattern();
+    p->force_jacobian(t, q.data(), v.data(), K, C);
+    p->constraint_jacobian(t, q.data(), G);
+    Mat Kfd(n, n), Cfd(n, n), Gfd(m, n), Mq(n, n);
+    Vec fp(n), fm(n), gp(m), gm(m);
+    for (int c = 0; c < n; ++c) {
+      for (int which : {0, 1}) {
+        Vec qp = q, qm = q, vp = v, vm = v;
+        (which ? vp : qp)(c) += h;
+        (which ? vm : qm)(c) -= h;
+        p->force(t, qp.data(), vp.data(), fp.data());
+        p->force(t, qm.data(), vm.data(), fm.data());
+        (which ? Cfd : Kfd).col(c) = (fp - fm) / (2 * h);
+        if (!which) {
+          p->constraint(t, qp.data(), v.data(), gp.data(), nullptr, nullptr);
+          p->constraint(t, qm.data(), v.data(), gm.data(), nullptr, nullptr);
+          Gfd.col(c) = (gp - gm) / (2 * h);
+        }
+      }
+    }
+    EXPECT_LT(rel_err(Mat(K), Kfd), 1e-7);
+    EXPECT_LT(rel_err(Mat(C), Cfd), 1e-7);
+    EXPECT_LT(rel_err(Mat(G), Gfd), 1e-7);
+    // g' = d/dt g(t, q + t v) and ga = d/dt g'(t, q + t v, v) (q'' = 0)
+    Vec g(m), gv(m), ga(m), gvp(m), gvm(m);
+    p->constraint(t, q.data(), v.data(), g.data(), gv.data(), ga.data());
+    const Vec q1 = q + h * v, q0 = q - h * v;
+    p->constraint(t + h, q1.data(), v.data(), gp.data(), gvp.data(), nullptr);
+    p->constraint(t - h, q0.data(), v.data(), gm.data(), gvm.data(), nullptr);
+    EXPECT_LT(rel_err(gv, (gp - gm) / (2 * h)), 1e-7);
+    EXPECT_LT(rel_err(ga, (gvp - gvm) / (2 * h)), 1e-6);
+    // M symmetric positive definite
+    p->mass(t, q.data(), M);
+    const Mat Md(M);
+    EXPECT_LT((Md - Md.transpose()).cwiseAbs().maxCoeff(), 1e-18);
+    EXPECT_GT(Eigen::SelfAdjointEigenSolver<Mat>(Md).eigenvalues().minCoeff(), 0.0);
+    // the published start lies on the constraints, with consistent velocities
+    p->initial_state(q, v);
+    p->constraint(0.0, q.data(), v.data(), g.data(), gv.data(), nullptr);
+    EXPECT_LT(g.cwiseAbs().maxCoeff(), 1e-14);
+    EXPECT_LT(gv.cwiseAbs().maxCoeff(), 1e-14);
+  }
+}
+
+struct EndPoint {
+  problems::Score s;
+  long steps = 0;
+};
+
+EndPoint solve(const std::string& name, const std::string& integrator, const std::string& form,
+               double rtol, double atol, double step = 0.0) {
+  const LibraryProblem& lp = problems::library_problem(name);
+  auto p = lp.make();
+  IntegratorSettings s;
+  s.name = integrator;
+  s.formulation = form;
+  s.rtol = rtol;
+  s.atol = atol;
+  if (step > 0.0) s.step = step;
+  s.step_control = step > 0.0 ? "fixed" : s.step_control;
+  auto integ = make_integrator(integrator);
+  Vec q, v, lam;
+  p->initial_state(q, v);
+  integ->init(*p, 0.0, q, v, s);
+  integ->advance(lp.t_end, true, q, v);
+  if (!integ->multipliers(lam)) lam.resize(0);
+  EndPoint e;
+  e.s = problems::score(lp, q, v, lam, rtol, atol);
+  e.steps = integ->stats().steps;
+  std::printf("%-9s %-18s %-8s rtol %.0e  mescd %5.2f  scd %5.2f  lambda %5.2f  steps %ld\n",
+              name.c_str(), integrator.c_str(), form.c_str(), rtol, e.s.mescd, e.s.scd,
+              e.s.mescd_lambda, e.steps);
+  return e;
+}
+
+// IDA at rtol 1e-8, atol 1e-10 in each formulation: mixed-error digits at the
+// end point, floors a little below the values measured (2026-11-24, in the
+// comments). GGL reaches 5 digits on both test-set problems (the bar);
+// index-3 leaves v out of the error test and loses accuracy in it.
+TEST(Problems, IdaReachesTheReference) {
+  struct Case {
+    const char* name;
+    const char* form;
+    double floor;
+  };
+  const Case cases[] = {
+      {"andrews", "ggl", 5.0},       // 5.23
+      {"andrews", "index-2", 4.0},   // 4.36
+      {"andrews", "index-1", 3.7},   // 4.00
+      {"andrews", "index-3", 1.0},   // 1.40
+      {"car-axis", "ggl", 5.0},      // 5.51
+      {"car-axis", "index-2", 4.9},  // 5.18
+      {"car-axis", "index-1", 4.3},  // 4.61
+      {"car-axis", "index-3", 2.6},  // 2.96
+      {"pendulum", "ggl", 5.0},      // 5.36
+      {"pendulum", "index-2", 4.9},  // 5.19
+      {"pendulum", "index-1", 4.2},  // 4.48
+      {"pendulum", "index-3", 2.0},  // 2.24
+  };
+  for (const Case& c : cases)
+    EXPECT_GE(solve(c.name, "ida", c.form, 1e-8, 1e-10).s.mescd, c.floor)
+        << c.name << " " << c.form;
+  // the multipliers of car axis (published) with GGL: 7.04 digits
+  EXPECT_GE(solve("car-axis", "ida", "ggl", 1e-8, 1e-10).s.mescd_lambda, 6.5);
+}
+
+// Generalized-alpha (index-3, Arnold & Bruls 2007, rho_inf 0.9): second order,
+// so halving the step adds log10(4) = 0.60 digits. Measured: andrews 2.60,
+// 3.20 (h = 1e-5, 5e-6); car-axis 1.08, 1.69 (1e-3, 5e-4); pendulum 2.55, 3.15.
+TEST(Problems, GeneralizedAlphaConvergesAtOrderTwo) {
+  for (const std::string name : {"andrews", "car-axis", "pendulum"}) {
+    const double h = name == "andrews" ? 1e-5 : 1e-3;
+    const EndPoint a = solve(name, "generalized-alpha", "index-3", 1e-8, 1e-10, h);
+    const EndPoint b = solve(name, "generalized-alpha", "index-3", 1e-8, 1e-10, h / 2);
+    EXPECT_NEAR(b.s.mescd - a.s.mescd, std::log10(4.0), 0.1) << name;
+    EXPECT_GE(a.s.mescd, 1.0) << name;
+  }
+}
+
+// `evas problem`: the end point, its digits and the statistics; errors name the input.
+std::string run_evas(const std::string& args, int& code) {
+  const std::string out = std::string(EVAS_BINARY_DIR) + "/tests/problem_cli.txt";
+  code =
+      std::system((std::string(EVAS_BINARY_DIR) + "/evas " + args + " > " + out + " 2>&1").c_str());
+  code = WIFEXITED(code) ? WEXITSTATUS(code) : -1;
+  std::ifstream f(out);
+  std::stringstream ss;
+  ss << f.rdbuf();
+  return ss.str();
+}
+
+TEST(Problems, Command) {
+  int code = 0;
+  std::string text = run_evas("problem car-axis --rtol 1e-6", code);
+  EXPECT_EQ(code, 0) << text;
+  EXPECT_NE(text.find("mescd"), std::string::npos) << text;
+  EXPECT_NE(text.find("car-axis"), std::string::npos) << text;
+  text = run_evas("problem andrews --integrator generalized-alpha --step 1e-5", code);
+  EXPECT_EQ(code, 0) << text;
+  EXPECT_NE(text.find("mescd"), std::string::npos) << text;
+  text = run_evas("problem --list", code);
+  EXPECT_EQ(code, 0) << text;
+  for (const char* n : {"andrews", "car-axis", "pendulum"})
+    EXPECT_NE(text.find(n), std::string::npos) << text;
+  text = run_evas("problem andrew", code);
+  EXPECT_EQ(code, 1) << text;
+  EXPECT_NE(text.find("no problem named 'andrew' (known: andrews, car-axis, pendulum)"),
+            std::string::npos)
+      << text;
+  text = run_evas("problem car-axis --formulation index-7", code);
+  EXPECT_EQ(code, 1) << text;
+  // linear acceleration's index-3 form diverges (docs/theory.md section 10.5): exit 2
+  text = run_evas("problem pendulum --integrator linear-acceleration --formulation index-3", code);
+  EXPECT_EQ(code, 2) << text;
+  EXPECT_NE(text.find("FAILED"), std::string::npos) << text;
+  text = run_evas("problem car-axis --integrator cvode", code);  // a combination refused
+  EXPECT_EQ(code, 1) << text;
+  EXPECT_NE(text.find("formulation=penalty"), std::string::npos) << text;
+}
+
+}  // namespace
+}  // namespace evas
