@@ -1,7 +1,6 @@
 // `evas problem NAME`: a test problem of the library (problems/library.h) run
 // from t = 0 to its reference end point with any integrator and formulation,
 // scored in significant correct digits as the IVP Test Set scores.
-#include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -10,7 +9,7 @@
 #include <sstream>
 
 #include "apps/commands.h"
-#include "dae/constraint_stats.h"
+#include "apps/problem_run.h"
 #include "integrators/integrator.h"
 #include "integrators/settings.h"
 #include "problems/library.h"
@@ -57,7 +56,10 @@ int cmd_problem(const std::vector<std::string>& args) {
       "step of the fixed-step integrators (default t_end / 2000), first step of the others")(
       "set", po::value<std::vector<std::string>>(),
       "KEY=VALUE: any integrator setting, repeatable (evas run --help-settings)")(
-      "out", po::value<std::string>(), "folder for summary.json");
+      "out", po::value<std::string>(), "folder for summary.json (and the sweep's files)")(
+      "work-precision",
+      "sweep IDA in every formulation over rtol 1e-3..1e-10 and generalized-alpha over 8 "
+      "step halvings; writes OUT/work_precision.csv and .png");
   po::variables_map vm;
   if (parse_args(args, opts, {"name"}, vm)) return 0;
   if (vm.count("list")) {
@@ -80,34 +82,24 @@ int cmd_problem(const std::vector<std::string>& args) {
   if (vm.count("set"))
     for (const auto& a : vm["set"].as<std::vector<std::string>>()) apply_setting_assignment(s, a);
 
-  auto problem = lp.make();
-  auto integ = make_integrator(s.name);
-  Vec q, v, lam;
-  problem->initial_state(q, v);
+  if (vm.count("work-precision")) {
+    if (!vm.count("out")) throw InputError("--work-precision needs --out DIR for its table");
+    problem_work_precision(lp, vm["out"].as<std::string>());
+    return 0;
+  }
   std::cout << "evas problem " << lp.name << ": " << lp.description << "\n"
             << "  integrator " << s.name << ", formulation " << s.formulation << ", rtol " << s.rtol
             << ", atol " << s.atol << "; reference: " << lp.source << "\n";
-  const auto t0 = std::chrono::steady_clock::now();
-  std::string failure;
-  try {
-    integ->init(*problem, 0.0, q, v, s);
-    integ->advance(lp.t_end, true, q, v);
-  } catch (const InputError&) {
-    throw;
-  } catch (const std::exception& e) {
-    failure = e.what();
-  }
-  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  const IntegratorStats st = integ->stats();
-  if (!failure.empty()) {
-    std::cerr << "evas problem: FAILED: " << failure << "\n";
+  const ProblemRun run = run_problem(lp, s);
+  if (!run.failure.empty()) {
+    std::cerr << "evas problem: FAILED: " << run.failure << "\n";
     return 2;
   }
-  if (!integ->multipliers(lam)) lam.resize(0);
-  const problems::Score sc = problems::score(lp, q, v, lam, s.rtol, s.atol);
-  double gmax = 0.0, gvmax = 0.0;
-  dae::constraint_norms(*problem, lp.t_end, q, v, gmax, gvmax);
-
+  const Vec &q = run.q, &v = run.v;
+  const problems::Score& sc = run.score;
+  const IntegratorStats& st = run.stats;
+  const double wall = run.wall, gmax = run.g_end;
+  const auto problem = lp.make();
   const int n = problem->size();
   std::cout << "  end point t = " << lp.t_end << " s:\n"
             << "    component            value                  reference              "
@@ -129,7 +121,7 @@ int cmd_problem(const std::vector<std::string>& args) {
             << ", residuals " << st.residual_evals << ", Jacobians " << st.jacobian_evals
             << ", factorisations " << st.linear_setups << ", error-test failures "
             << st.error_test_failures << ", convergence failures " << st.convergence_failures
-            << ", wall " << wall << " s; at the end |g| " << gmax << ", |g'| " << gvmax << "\n";
+            << ", wall " << wall << " s; at the end |g| " << gmax << "\n";
 
   if (vm.count("out")) {
     const std::filesystem::path dir = vm["out"].as<std::string>();

@@ -184,6 +184,18 @@ TEST(Problems, Command) {
   text = run_evas("problem andrews --integrator generalized-alpha --step 1e-5", code);
   EXPECT_EQ(code, 0) << text;
   EXPECT_NE(text.find("mescd"), std::string::npos) << text;
+  // the sweep: every family, a table with a row per case
+  const std::string dir = std::string(EVAS_BINARY_DIR) + "/tests/problem_wp";
+  text = run_evas("problem pendulum --work-precision --out " + dir, code);
+  EXPECT_EQ(code, 0) << text;
+  std::ifstream csv(dir + "/work_precision.csv");
+  std::string line;
+  int lines = 0;
+  while (std::getline(csv, line)) ++lines;
+  EXPECT_EQ(lines, 1 + 4 * 8 + 8) << text;
+  EXPECT_NE(text.find("generalized-alpha index-3"), std::string::npos) << text;
+  text = run_evas("problem pendulum --work-precision", code);
+  EXPECT_EQ(code, 1) << text;
   text = run_evas("problem --list", code);
   EXPECT_EQ(code, 0) << text;
   for (const char* n : {"andrews", "car-axis", "pendulum"})

@@ -1,0 +1,116 @@
+#include "apps/problem_run.h"
+
+#include <chrono>
+#include <cmath>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <vector>
+
+#include "dae/constraint_stats.h"
+#include "study/report.h"
+
+namespace evas::cli {
+
+ProblemRun run_problem(const problems::LibraryProblem& lp, const IntegratorSettings& s) {
+  ProblemRun r;
+  auto problem = lp.make();
+  auto integ = make_integrator(s.name);
+  problem->initial_state(r.q, r.v);
+  const auto t0 = std::chrono::steady_clock::now();
+  try {
+    integ->init(*problem, 0.0, r.q, r.v, s);
+    integ->advance(lp.t_end, true, r.q, r.v);
+  } catch (const InputError&) {
+    throw;
+  } catch (const std::exception& e) {
+    r.failure = e.what();
+  }
+  r.wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  r.stats = integ->stats();
+  if (!r.failure.empty()) return r;
+  if (!integ->multipliers(r.lambda)) r.lambda.resize(0);
+  r.score = problems::score(lp, r.q, r.v, r.lambda, s.rtol, s.atol);
+  double gv = 0.0;
+  dae::constraint_norms(*problem, lp.t_end, r.q, r.v, r.g_end, gv);
+  return r;
+}
+
+void problem_work_precision(const problems::LibraryProblem& lp, const std::filesystem::path& dir) {
+  struct Row {
+    std::string family, label;
+    ProblemRun run;
+  };
+  std::vector<Row> rows;
+  auto add = [&](const std::string& family, const std::string& label, const IntegratorSettings& s) {
+    rows.push_back({family, label, run_problem(lp, s)});
+    const Row& r = rows.back();
+    std::cout << "  " << std::left << std::setw(27) << family << std::setw(14) << label
+              << std::right;
+    if (r.run.failure.empty())
+      std::cout << " mescd " << std::fixed << std::setprecision(2) << std::setw(6)
+                << r.run.score.mescd << std::defaultfloat << "  steps " << std::setw(7)
+                << r.run.stats.steps << "  wall " << std::setprecision(3) << r.run.wall << " s\n";
+    else
+      std::cout << " FAILED: " << r.run.failure.substr(0, 100) << "\n";
+  };
+  std::cout << "evas problem " << lp.name << " --work-precision (atol = rtol / 100)\n";
+  for (const char* f : {"ggl", "index-2", "index-1", "index-3"})
+    for (int k = 3; k <= 10; ++k) {
+      IntegratorSettings s;
+      s.name = "ida";
+      s.formulation = f;
+      s.rtol = std::pow(10.0, -k);
+      s.atol = s.rtol / 100.0;
+      add(std::string("ida ") + f, "rtol 1e-" + std::to_string(k), s);
+    }
+  for (int k = 0; k < 8; ++k) {
+    IntegratorSettings s;
+    s.name = "generalized-alpha";
+    s.formulation = "index-3";
+    s.step = lp.t_end / (250.0 * std::pow(2.0, k));
+    s.step_control = "fixed";
+    s.rtol = 1e-10;
+    s.atol = 1e-12;
+    std::ostringstream label;
+    label << "h " << std::setprecision(3) << s.step;
+    add("generalized-alpha index-3", label.str(), s);
+  }
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  const std::filesystem::path csv = dir / "work_precision.csv";
+  std::ofstream f(csv);
+  if (!f) throw InputError(csv.string() + ": cannot write the file");
+  f << "family,case,status,mescd,scd,mescd_lambda,steps,residual_evals,jacobian_evals,"
+       "wall_seconds,max_constraint_end\n";
+  for (const Row& r : rows) {
+    const bool ok = r.run.failure.empty();
+    f << r.family << "," << r.label << "," << (ok ? "completed" : "failed") << ","
+      << std::setprecision(6) << (ok ? r.run.score.mescd : NAN) << ","
+      << (ok ? r.run.score.scd : NAN) << "," << (ok ? r.run.score.mescd_lambda : NAN) << ","
+      << r.run.stats.steps << "," << r.run.stats.residual_evals << "," << r.run.stats.jacobian_evals
+      << "," << r.run.wall << "," << r.run.g_end << "\n";
+  }
+  f.close();
+  if (!f) throw InputError(csv.string() + ": writing failed");
+  std::cout << "  table: " << csv.string() << "\n";
+  if (!study::have_gnuplot()) return;
+  const std::filesystem::path gp = dir / "work_precision.gp";
+  std::ofstream g(gp);
+  g << "set terminal pngcairo size 900,600 font 'sans,10'\nset output 'work_precision.png'\n"
+    << "set datafile separator ','\nset logscale x\nset grid\nset key left top\n"
+    << "set xlabel 'wall time [s]'\nset ylabel 'mescd (significant correct digits)'\n"
+    << "set title '" << lp.name << ": work-precision of integrators and formulations'\n"
+    << "plot ";
+  const char* fams[] = {"ida ggl", "ida index-2", "ida index-1", "ida index-3",
+                        "generalized-alpha index-3"};
+  for (int k = 0; k < 5; ++k)
+    g << (k ? ", \\\n     " : "") << "'work_precision.csv' using (strcol(1) eq '" << fams[k]
+      << "' && strcol(3) eq 'completed' ? $10 : 1/0):4 with linespoints title '" << fams[k] << "'";
+  g << "\n";
+  g.close();
+  if (study::run_gnuplot(gp))
+    std::cout << "  figure: " << (dir / "work_precision.png").string() << "\n";
+}
+
+}  // namespace evas::cli
