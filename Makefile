@@ -28,6 +28,8 @@ demo: build
 	  --out $(DEMO_OUT)/study --quiet
 	@echo "work-precision diagram of the demo scene: $(DEMO_OUT)/study/study.png"
 	./validation/engine/run.sh $(BUILD) $(DEMO_OUT)/validation
+	./$(BUILD)/evas problem andrews --work-precision --out $(DEMO_OUT)/problems/andrews
+	./$(BUILD)/evas problem car-axis --work-precision --out $(DEMO_OUT)/problems/car-axis
 
 # The paper's validation: Case 1 (soft mounts) vs Case 2 (rigid ground), main-bearing
 # loads and their order spectra (docs/validation.md).
