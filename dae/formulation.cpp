@@ -20,6 +20,7 @@
 
 #include "dae/consistent.h"
 #include "dae/sparse_util.h"
+#include "integrators/common.h"
 
 namespace evas::dae {
 
@@ -55,6 +56,9 @@ DaeForm::DaeForm(Problem& p, Formulation f, double alpha, double beta)
     throw std::logic_error("DaeForm: the penalty formulation is an ODE (dae/penalty.h)");
   const bool ggl = f == Formulation::ggl;
   size_ = 2 * n_ + m_ + (ggl ? m_ : 0);
+  z0_ = size_;
+  nz_ = p.internal_count();
+  size_ += nz_;
   mass_ = p.has_mass();
   nonlinear_ = m_ > 0 && !p.constraints_linear();
   fd_ = mass_ || nonlinear_;
@@ -130,6 +134,9 @@ DaeForm::DaeForm(Problem& p, Formulation f, double alpha, double beta)
       fdq.emplace_back(v0 + e.row(), e.col(), 0.0);
       if (ggl) fdq.emplace_back(e.row(), e.col(), 0.0);
     }
+  if (nz_ > 0) {
+    zb_.place(p, trip, v0, z0_);
+  }
   trip.insert(trip.end(), fdq.begin(), fdq.end());
   trip.insert(trip.end(), fdv.begin(), fdv.end());
   J_ = pattern_from(size_, size_, trip);
@@ -185,14 +192,24 @@ DaeForm::DaeForm(Problem& p, Formulation f, double alpha, double beta)
   fdq_ = columns(fdq, 0);
   fdv_ = columns(fdv, v0);
 
+  if (nz_ > 0) {
+    zb_.locate(J_, v0, z0_);
+    for (int i = 0; i < nz_; ++i) {
+      if (p.internal_algebraic(i))
+        zalg_.push_back(i);
+      else
+        pZdiag_.push_back(value_position(J_, z0_ + i, z0_ + i));
+    }
+  }
   diff_id_ = Vec::Zero(size_);
   diff_id_.head(2 * n_).setOnes();
+  for (int i = 0; i < nz_; ++i) diff_id_[z0_ + i] = p.internal_algebraic(i) ? 0.0 : 1.0;
   err_id_ = diff_id_;
   if (f_ == Formulation::index3 && m_ > 0) err_id_.segment(v0, n_).setZero();
   weight_power_.assign(static_cast<std::size_t>(size_), 0);
   if (m_ > 0 && f_ != Formulation::index1) {
     const int lam_power = f_ == Formulation::index3 ? 2 : 1;
-    for (int i = l0; i < size_; ++i) weight_power_[static_cast<std::size_t>(i)] = 1;
+    for (int i = l0; i < z0_; ++i) weight_power_[static_cast<std::size_t>(i)] = 1;
     for (int k = 0; k < m_; ++k) weight_power_[static_cast<std::size_t>(l0 + k)] = lam_power;
     if (f_ == Formulation::index3)
       for (int i = 0; i < n_; ++i) weight_power_[static_cast<std::size_t>(v0 + i)] = 1;
@@ -225,6 +242,7 @@ void DaeForm::residual(double t, const double* y, const double* yd, double* F) {
   const double *qd = yd, *vd = yd + n_;
   double* Fv = F + n_;
   double* Fc = F + 2 * n_;
+  if (nz_ > 0) p_.set_internal(y + z0_);
   p_.force(t, q, v, Fv);
   for (int i = 0; i < n_; ++i) F[i] = qd[i] - v[i];
   if (mass_) {
@@ -235,6 +253,11 @@ void DaeForm::residual(double t, const double* y, const double* yd, double* F) {
         Fv[M_.innerIndexPtr()[e]] += val[e] * vd[c];
   } else {
     for (int i = 0; i < n_; ++i) Fv[i] += vd[i];
+  }
+  if (nz_ > 0) {
+    double* Fz = F + z0_;
+    p_.internal_rate(t, q, v, Fz);
+    for (int i = 0; i < nz_; ++i) Fz[i] = diff_id_[z0_ + i] * yd[z0_ + i] - Fz[i];
   }
   if (m_ == 0) return;
   g_jacobian(t, q);
@@ -314,6 +337,11 @@ void DaeForm::residual_jacobian(double t, const double* y, const double* yd, dou
   const double *q = y, *v = y + n_;
   double* val = J.valuePtr();
   std::fill(val, val + J.nonZeros(), 0.0);
+  if (nz_ > 0) {
+    p_.set_internal(y + z0_);
+    zb_.add(p_, t, q, v, val, 1.0);
+    for (int pos : pZdiag_) val[pos] += cj;
+  }
   p_.force_jacobian(t, q, v, K_, C_);
   for (std::size_t e = 0; e < pK_.size(); ++e) {
     val[pK_[e]] += K_.valuePtr()[e];
@@ -387,8 +415,44 @@ void DaeForm::residual_jacobian(double t, const double* y, const double* yd, dou
   }
 }
 
+void DaeForm::solve_algebraic_states(double t, const Vec& q, const Vec& v) {
+  if (zalg_.empty()) return;
+  zcur_ = Eigen::Map<const Vec>(p_.internal(), nz_);
+  Vec h(nz_);
+  const int na = static_cast<int>(zalg_.size());
+  Mat A(na, na);
+  Vec r(na);
+  for (int it = 0; it < 20; ++it) {
+    p_.set_internal(zcur_.data());
+    p_.internal_rate(t, q.data(), v.data(), h.data());
+    double worst = 0.0;
+    for (int a = 0; a < na; ++a) {
+      r[a] = h[zalg_[static_cast<std::size_t>(a)]];
+      worst = std::max(worst, std::abs(r[a]));
+    }
+    if (!(worst > 1e-14 * (1.0 + zcur_.cwiseAbs().maxCoeff()))) return;
+    p_.internal_jacobian(t, q.data(), v.data(), zb_.Fz, zb_.Hq, zb_.Hv, zb_.Hz);
+    const Mat Hz(zb_.Hz);
+    for (int a = 0; a < na; ++a)
+      for (int b = 0; b < na; ++b)
+        A(a, b) = Hz(zalg_[static_cast<std::size_t>(a)], zalg_[static_cast<std::size_t>(b)]);
+    const Vec dz = A.fullPivLu().solve(r);
+    if (!dz.allFinite())
+      throw RunError("consistent start at t = " + format_number(t) +
+                     " s: the algebraic internal states cannot be solved (dh/dz singular at " +
+                     p_.internal_name(zalg_[0]) + ")");
+    for (int a = 0; a < na; ++a) zcur_[zalg_[static_cast<std::size_t>(a)]] -= dz[a];
+  }
+  p_.set_internal(zcur_.data());
+}
+
 double DaeForm::consistent_start(double t, const Vec& q, const Vec& v, double* y, double* yd) {
-  const ConsistentState s = consistent_state(p_, t, q, v);
+  solve_algebraic_states(t, q, v);
+  ConsistentState s = consistent_state(p_, t, q, v);
+  if (!zalg_.empty() && m_ > 0) {  // the projection moved (q, v): solve again there
+    solve_algebraic_states(t, s.q, s.v);
+    s = consistent_state(p_, t, s.q, s.v);
+  }
   std::fill(y, y + size_, 0.0);
   std::fill(yd, yd + size_, 0.0);
   for (int i = 0; i < n_; ++i) {
@@ -398,6 +462,12 @@ double DaeForm::consistent_start(double t, const Vec& q, const Vec& v, double* y
     yd[n_ + i] = s.a[i];
   }
   for (int k = 0; k < m_; ++k) y[2 * n_ + k] = s.lambda[k];
+  if (nz_ > 0) {
+    std::copy(p_.internal(), p_.internal() + nz_, y + z0_);
+    Vec h(nz_);
+    p_.internal_rate(t, s.q.data(), s.v.data(), h.data());
+    for (int i = 0; i < nz_; ++i) yd[z0_ + i] = diff_id_[z0_ + i] * h[i];
+  }
   Vec F(size_);
   residual(t, y, yd, F.data());
   return size_ > 0 ? F.cwiseAbs().maxCoeff() : 0.0;

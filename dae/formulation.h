@@ -3,7 +3,7 @@
 // one per formulation, with the iteration matrix dF/dy + cj dF/dy' that IDA
 // factorizes (SUNDIALS IDA user guide, "Mathematical considerations").
 //
-// Layout y = [q (n); v (n); lambda (m); mu (m, GGL only)]:
+// Layout y = [q (n); v (n); lambda (m); mu (m, GGL only); z (nz)]:
 //   index-3  [q' - v;            M v' + f + G^T lambda;  g]
 //   index-2  [q' - v;            M v' + f + G^T lambda;  G v + g_t]
 //   ggl      [q' - v + G^T mu;   M v' + f + G^T lambda;  g;  G v + g_t]
@@ -12,6 +12,10 @@
 // & Gupta, J. Comput. Appl. Math. 12-13 (1985) 77-90 for ggl; Baumgarte,
 // Comput. Methods Appl. Mech. Eng. 1 (1972) 1-16 for alpha, beta.) With m = 0
 // every formulation is the mass-matrix ODE [q' - v; M v' + f].
+// Element internal states z (Problem::internal_count()) add the rows
+// z' - h(t, q, v, z) (differential) or -h(t, q, v, z) (algebraic, index 1 when
+// dh/dz of the algebraic ones is regular), with f = f(t, q, v, z); their
+// Jacobian blocks Fz, Hq, Hv, Hz are analytic.
 //
 // Iteration matrix: K, C, M and G are analytic. The second-derivative terms
 // d(G^T lambda)/dq, d(G^T mu)/dq, d(G v + g_t)/dq, d(G v' + ga)/dq, d(ga)/dv and
@@ -25,6 +29,7 @@
 #include <string>
 #include <vector>
 
+#include "dae/internal_blocks.h"
 #include "solver/problem.h"
 
 namespace evas::dae {
@@ -45,6 +50,9 @@ class DaeForm {
   Formulation formulation() const { return f_; }
   int n() const { return n_; }
   int m() const { return m_; }
+  int internal_count() const { return nz_; }
+  /// First component of z in y.
+  int z_offset() const { return z0_; }
   int size() const { return size_; }
 
   void residual(double t, const double* y, const double* yd, double* F);
@@ -70,8 +78,12 @@ class DaeForm {
 
   /// y, y' (size()) from (q, v) at t via consistent_state (dae/consistent.h):
   /// q, v projected onto the constraints, v' and lambda from the saddle-point
-  /// system, mu = 0, lambda' = mu' = 0. Returns max |F(t, y, y')|.
+  /// system, mu = 0, lambda' = mu' = 0. Internal states: z from the problem's
+  /// current z, its algebraic part solved by Newton for h = 0 at (q, v), z' = h
+  /// (differential), 0 (algebraic). Returns max |F(t, y, y')|.
   double consistent_start(double t, const Vec& q, const Vec& v, double* y, double* yd);
+  /// True when some internal state is algebraic.
+  bool has_algebraic_states() const { return !zalg_.empty(); }
 
  private:
   // The parts of F that need finite differences, at (q, v) with y' and the
@@ -81,11 +93,13 @@ class DaeForm {
   void gt_times(const double* w, double* out, double sign = 1.0) const;
   /// G at (t, q) into G_ (evaluated once when the constraints are linear).
   void g_jacobian(double t, const double* q);
+  /// Newton on the algebraic internal states at (q, v) (current z updated).
+  void solve_algebraic_states(double t, const Vec& q, const Vec& v);
 
   Problem& p_;
   Formulation f_;
   double alpha_, beta_;
-  int n_, m_, size_;
+  int n_, m_, size_, nz_ = 0, z0_ = 0;
   bool mass_, nonlinear_, fd_;
   bool g_cached_ = false;
   SpMat K_, C_, M_, G_, J_;
@@ -96,6 +110,11 @@ class DaeForm {
   std::vector<int> pK_, pC_, pM_, pQQ_, pQV_, pVV_;
   std::vector<int> pGtLam_, pGtMu_, pGq_, pGv_;
   std::vector<std::vector<std::pair<int, int>>> fdq_, fdv_;  // per column: (row, position)
+  // internal states: Jacobian blocks, their positions, the (z, z) diagonal of
+  // the differential ones, and the algebraic states' indices
+  InternalBlocks zb_;
+  std::vector<int> pZdiag_, zalg_;
+  Vec zcur_;
 };
 
 }  // namespace evas::dae

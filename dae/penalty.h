@@ -42,6 +42,26 @@ class PenaltyProblem final : public Problem {
   std::string describe_state(double t, const double* q, const double* v) const override {
     return base_.describe_state(t, q, v);
   }
+  std::string describe_coordinate(int i) const override { return base_.describe_coordinate(i); }
+  // internal states: the base problem's (the penalty forces do not depend on z)
+  int internal_count() const override { return base_.internal_count(); }
+  bool internal_algebraic(int i) const override { return base_.internal_algebraic(i); }
+  void internal_initial(double t, const Vec& q, const Vec& v, Vec& z) override {
+    base_.internal_initial(t, q, v, z);
+  }
+  void set_internal(const double* z) override { base_.set_internal(z); }
+  const double* internal() const override { return base_.internal(); }
+  void internal_rate(double t, const double* q, const double* v, double* h) override {
+    base_.internal_rate(t, q, v, h);
+  }
+  void internal_jacobian(double t, const double* q, const double* v, SpMat& Fz, SpMat& Hq,
+                         SpMat& Hv, SpMat& Hz) override {
+    base_.internal_jacobian(t, q, v, Fz, Hq, Hv, Hz);
+  }
+  void internal_patterns(SpMat& Fz, SpMat& Hq, SpMat& Hv, SpMat& Hz) const override {
+    base_.internal_patterns(Fz, Hq, Hv, Hz);
+  }
+  std::string internal_name(int i) const override { return base_.internal_name(i); }
 
  private:
   Problem& base_;

@@ -62,6 +62,64 @@ class Element {
   /// then re-linearises at the solved accelerations until they settle.
   virtual bool inertia_piecewise() const { return false; }
 
+  /// Internal states (beyond the paper; issue: element states as DAE variables).
+  /// An element may carry nz = internal_count() first-order states z of its own,
+  /// each differential (z_i' = h_i) or algebraic (0 = h_i, e.g. the speed of a
+  /// massless disk, whose torque balance replaces Newton's law). The System
+  /// places them after the modal coordinates (Problem::internal_count()); only
+  /// integrators that declare Integrator::takes_internal_states() run them.
+  /// An element without states keeps the z-free functions above; the *_z
+  /// versions below default to them, so such an element needs nothing new.
+  virtual int internal_count() const { return 0; }
+  virtual bool internal_algebraic(int i) const {
+    (void)i;
+    return false;
+  }
+  /// Short name of state i for messages and outputs, e.g. "z_x" (default "z<i>").
+  virtual std::string internal_name(int i) const;
+  /// Initial states at the initial motion; algebraic ones consistent (h = 0).
+  virtual void internal_initial(double t, const MarkerMotion* m, double* z) const {
+    (void)t;
+    (void)m;
+    (void)z;
+  }
+  /// Loads, derivatives and channels at states z (internal_count() values).
+  virtual void evaluate_z(double t, const MarkerMotion* m, const double* z,
+                          MarkerLoad* loads) const {
+    (void)z;
+    evaluate(t, m, loads);
+  }
+  virtual void derivatives_z(double t, const MarkerMotion* m, const double* z, Mat& D) const {
+    (void)z;
+    derivatives(t, m, D);
+  }
+  virtual void channel_values_z(double t, const MarkerMotion* m, const double* z,
+                                double* out) const {
+    (void)z;
+    channel_values(t, m, out);
+  }
+  /// h(t, motion, z) (nz values): z' = h for differential, 0 = h for algebraic states.
+  virtual void internal_rate(double t, const MarkerMotion* m, const double* z, double* h) const {
+    (void)t;
+    (void)m;
+    (void)z;
+    (void)h;
+  }
+  /// Analytic derivatives, preallocated by the caller: Dz = d(loads)/dz (6k x nz),
+  /// Hm = dh/d(motion) (nz x 12k, columns as in D), Hz = dh/dz (nz x nz).
+  virtual void internal_derivatives(double t, const MarkerMotion* m, const double* z, Mat& Dz,
+                                    Mat& Hm, Mat& Hz) const {
+    (void)t;
+    (void)m;
+    (void)z;
+    Dz.setZero();
+    Hm.setZero();
+    Hz.setZero();
+  }
+  /// Central finite differences of the same three (reference in tests).
+  void internal_derivatives_fd(double t, const MarkerMotion* m, const double* z, Mat& Dz, Mat& Hm,
+                               Mat& Hz) const;
+
   /// Output channels and their values at the given motion.
   virtual std::vector<Channel> channels() const = 0;
   virtual void channel_values(double t, const MarkerMotion* motion, double* out) const = 0;

@@ -36,6 +36,7 @@ class CvodeIntegrator final : public Integrator {
   CvodeIntegrator& operator=(const CvodeIntegrator&) = delete;
 
   std::string name() const override { return "cvode"; }
+  bool takes_internal_states() const override { return true; }
 
   void init(Problem& p, double t0, const Vec& q0, const Vec& v0,
             const IntegratorSettings& s) override {
@@ -63,12 +64,18 @@ class CvodeIntegrator final : public Integrator {
       throw InputError(
           "cvode: the problem has a mass matrix (M != I), which cvode's explicit form "
           "v' = -f cannot take; use ida");
-    form_ = std::make_unique<FirstOrderForm>(*model);
+    form_ = std::make_unique<FirstOrderForm>(*model);  // refuses algebraic internal states
     J_ = form_->rhs_pattern();
 
-    y_.create(2 * n_, ctx_);
-    ytmp_.create(2 * n_, ctx_);
+    y_.create(form_->size(), ctx_);
+    ytmp_.create(form_->size(), ctx_);
     set_state(q0, v0);
+    if (form_->internal_count() > 0) {
+      Vec z;
+      model->internal_initial(t0, q0, v0, z);
+      std::copy(z.data(), z.data() + z.size(), y_.data() + 2 * n_);
+      model->set_internal(z.data());
+    }
 
     mem_ = CVodeCreate(newton_ ? CV_BDF : CV_ADAMS, ctx_);
     if (!mem_) throw RunError("cvode: CVodeCreate failed");
@@ -169,6 +176,7 @@ class CvodeIntegrator final : public Integrator {
       q[i] = y[i];
       v[i] = y[n_ + i];
     }
+    if (form_->internal_count() > 0) form_->problem().set_internal(y + 2 * n_);
   }
 
   double current_time() const {

@@ -22,6 +22,14 @@
 // test at small steps. formulation=penalty runs the ODE of dae/penalty.h.
 // Problems with M = I and no constraints take the path above, unchanged.
 //
+// Element internal states z (Problem::internal_count()) also run on the DAE
+// path, y = [q; v; lambda; mu; z], with z differential or algebraic as the
+// element declares. Their start: the problem's initial z, the algebraic part
+// solved by Newton (DaeForm::consistent_start), then IDACalcIC when the system
+// is of index one (no constraints, or the index-1 formulation). With
+// constraints, algebraic states leave the error test with lambda and mu;
+// without, they stay in it (index one: their error is controlled like y's).
+//
 // Stepping: IDA runs in IDA_ONE_STEP mode inside advance() so every accepted
 // step is seen (min/max step). Outputs that are not stops are interpolated
 // with IDAGetDky (the same interpolant IDA_NORMAL uses); stops are reached
@@ -53,6 +61,7 @@ class IdaIntegrator final : public Integrator {
   IdaIntegrator& operator=(const IdaIntegrator&) = delete;
 
   std::string name() const override { return "ida"; }
+  bool takes_internal_states() const override { return true; }
 
   void init(Problem& p, double t0, const Vec& q0, const Vec& v0,
             const IntegratorSettings& s) override {
@@ -73,7 +82,12 @@ class IdaIntegrator final : public Integrator {
         model = penalty_.get();
       }
     }
-    if (model->has_mass() || model->constraint_count() > 0) {
+    if (p.internal_count() > 0) {
+      Vec z;
+      p.internal_initial(t0, q0, v0, z);
+      p.set_internal(z.data());
+    }
+    if (model->has_mass() || model->constraint_count() > 0 || model->internal_count() > 0) {
       // (penalty: the wrapped problem has no constraints left, any formulation does)
       const auto f = formulation == dae::Formulation::penalty ? dae::Formulation::ggl : formulation;
       dae_ = std::make_unique<dae::DaeForm>(*model, f, s.baumgarte_alpha, s.baumgarte_beta);
@@ -160,6 +174,7 @@ class IdaIntegrator final : public Integrator {
     // IDAReInit resets IDA's counters: bank them first.
     sundials::add_segment(total_, segment());
     ++total_.restarts;
+    if (dae_ && dae_->internal_count() > 0) p_->set_internal(y_.data() + dae_->z_offset());
     set_state(t, q, v);
     check(IDAReInit(mem_, t, y_.get(), yd_.get()), "IDAReInit");
     t_ = t;
@@ -204,6 +219,7 @@ class IdaIntegrator final : public Integrator {
       v[i] = y[n_ + i];
     }
     if (dae_) lambda_ = Eigen::Map<const Vec>(y + 2 * n_, dae_->m());
+    if (dae_ && dae_->internal_count() > 0) p_->set_internal(y + dae_->z_offset());
   }
 
   // After IDAInit/IDAReInit on the DAE path: ids, IDACalcIC (index-1), the
@@ -214,7 +230,9 @@ class IdaIntegrator final : public Integrator {
     check(IDASetId(mem_, id_.get()), "IDASetId");
     const bool algebraic = dae_->m() > 0;
     if (algebraic) check(IDASetSuppressAlg(mem_, SUNTRUE), "IDASetSuppressAlg");
-    if (dae_->formulation() == dae::Formulation::index1 && algebraic) {
+    const bool index1 =
+        algebraic ? dae_->formulation() == dae::Formulation::index1 : dae_->has_algebraic_states();
+    if (index1) {
       const double span = s_.max_step > 0.0 ? s_.max_step : 1e-3;
       check(IDACalcIC(mem_, IDA_YA_YDP_INIT, t0 + span), "IDACalcIC");
       check(IDAGetConsistentIC(mem_, y_.get(), yd_.get()), "IDAGetConsistentIC");
@@ -305,6 +323,8 @@ class IdaIntegrator final : public Integrator {
       what = "position of " + p_->describe_coordinate(static_cast<int>(best));
     else if (best < 2 * n_)
       what = "velocity of " + p_->describe_coordinate(static_cast<int>(best - n_));
+    else if (dae_ && best >= dae_->z_offset())
+      what = p_->internal_name(static_cast<int>(best - dae_->z_offset()));
     else
       what = "algebraic variable " + std::to_string(best - 2 * n_) + " (multipliers)";
     return "; largest local error (weighted " + format_number(worst) + "): " + what;

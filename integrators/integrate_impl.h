@@ -8,6 +8,10 @@ namespace evas {
 template <class Sink>
 void integrate(Integrator& integ, Problem& p, double t0, const std::vector<double>& outputs,
                Sink&& sink) {
+  if (p.internal_count() > 0 && !integ.takes_internal_states())
+    throw InputError("integrator '" + integ.name() +
+                     "' does not integrate element internal states (" + p.internal_name(0) + ", " +
+                     std::to_string(p.internal_count()) + " in all): use ida or cvode");
   Vec q(p.size()), v(p.size());
   double t = t0;
   std::size_t k = 0;

@@ -91,6 +91,10 @@ class Integrator {
   void set_step_monitor(StepMonitor m) { monitor_ = std::move(m); }
   const StepMonitor& step_monitor() const { return monitor_; }
   virtual std::string name() const = 0;
+  /// True if the integrator runs problems with internal states (Problem::
+  /// internal_count() > 0): it sets the problem's z before every evaluation
+  /// and after advance(). integrate() refuses such problems otherwise.
+  virtual bool takes_internal_states() const { return false; }
   /// Prepare to integrate from t0 with q0, v0 (size n each).
   virtual void init(Problem& p, double t0, const Vec& q0, const Vec& v0,
                     const IntegratorSettings& s) = 0;

@@ -139,7 +139,7 @@ void OutputSet::values(double t, const double* q, const double* v, double* out,
         const Element& e = *model.elements()[src.index];
         scratch_.clear();
         for (int m : e.markers()) scratch_.push_back(sys_.motion(m));
-        e.channel_values(t, scratch_.data(), o);
+        e.channel_values_z(t, scratch_.data(), sys_.element_internal(src.index), o);
         break;
       }
       case ChannelRequest::Kind::Modal: {

@@ -199,6 +199,7 @@ class Model {
       q0 = cs.q;
       v0 = cs.v;
     }
+    evas::start_internal_states(sys, scene_.t_start, q0, v0);
     if (!times.empty() && times.front() <= scene_.t_start) {
       record(scene_.t_start, q0.data(), v0.data());
       times.erase(times.begin());

@@ -13,24 +13,17 @@
 #include <algorithm>
 #include <stdexcept>
 
+#include "dae/internal_blocks.h"
+
 namespace evas {
 
-namespace {
+using dae::value_position;
 
-// Position of (row, col) in the value array of a compressed column-major matrix.
-int value_position(const SpMat& A, int row, int col) {
-  const int* outer = A.outerIndexPtr();
-  const int* inner = A.innerIndexPtr();
-  const int* begin = inner + outer[col];
-  const int* end = inner + outer[col + 1];
-  const int* it = std::lower_bound(begin, end, row);
-  if (it == end || *it != row) throw std::logic_error("first_order: entry missing from pattern");
-  return static_cast<int>(it - inner);
-}
-
-}  // namespace
-
-FirstOrderForm::FirstOrderForm(Problem& p) : p_(p), n_(p.size()) {
+FirstOrderForm::FirstOrderForm(Problem& p) : p_(p), n_(p.size()), nz_(p.internal_count()) {
+  for (int i = 0; i < nz_; ++i)
+    if (p.internal_algebraic(i))
+      throw InputError(p.internal_name(i) +
+                       " is algebraic: this integrator takes ODEs only (use ida)");
   K_ = p.jacobian_pattern();
   K_.makeCompressed();
   if (K_.rows() != n_ || K_.cols() != n_)
@@ -50,7 +43,11 @@ FirstOrderForm::FirstOrderForm(Problem& p) : p_(p), n_(p.size()) {
       trip.emplace_back(n_ + it.row(), n_ + c, 0.0);  // C in (v, v)
     }
   }
-  Jres_.resize(2 * n_, 2 * n_);
+  const int z0 = 2 * n_;
+  if (nz_ > 0) {
+    zb_.place(p, trip, n_, z0);
+  }
+  Jres_.resize(size(), size());
   Jres_.setFromTriplets(trip.begin(), trip.end());
   Jres_.makeCompressed();
   Jres_.coeffs().setZero();
@@ -76,6 +73,10 @@ FirstOrderForm::FirstOrderForm(Problem& p) : p_(p), n_(p.size()) {
     res_cjv_[u] = value_position(Jres_, n_ + i, n_ + i);
     res_I_[u] = value_position(Jres_, i, n_ + i);
   }
+  if (nz_ > 0) {
+    zb_.locate(Jres_, n_, z0);
+    for (int i = 0; i < nz_; ++i) pZZ_.push_back(value_position(Jres_, z0 + i, z0 + i));
+  }
   // Identical patterns, so identical positions.
   rhs_K_ = res_K_;
   rhs_C_ = res_C_;
@@ -85,14 +86,20 @@ FirstOrderForm::FirstOrderForm(Problem& p) : p_(p), n_(p.size()) {
 void FirstOrderForm::residual(double t, const double* y, const double* yd, double* F) {
   const double* q = y;
   const double* v = y + n_;
+  if (nz_ > 0) p_.set_internal(y + 2 * n_);
   p_.force(t, q, v, F + n_);
   for (int i = 0; i < n_; ++i) {
     F[i] = yd[i] - v[i];
     F[n_ + i] += yd[n_ + i];
   }
+  if (nz_ == 0) return;
+  double* Fz = F + 2 * n_;
+  p_.internal_rate(t, q, v, Fz);
+  for (int i = 0; i < nz_; ++i) Fz[i] = yd[2 * n_ + i] - Fz[i];
 }
 
 void FirstOrderForm::residual_jacobian(double t, const double* y, double cj, SpMat& J) {
+  if (nz_ > 0) p_.set_internal(y + 2 * n_);
   p_.force_jacobian(t, y, y + n_, K_, C_);
   double* val = J.valuePtr();
   std::fill(val, val + J.nonZeros(), 0.0);
@@ -108,19 +115,25 @@ void FirstOrderForm::residual_jacobian(double t, const double* y, double cj, SpM
     val[res_cjv_[i]] += cj;
     val[res_I_[i]] -= 1.0;
   }
+  if (nz_ == 0) return;
+  zb_.add(p_, t, y, y + n_, val, 1.0);
+  for (int pos : pZZ_) val[pos] += cj;
 }
 
 void FirstOrderForm::rhs(double t, const double* y, double* yd) {
   const double* q = y;
   const double* v = y + n_;
+  if (nz_ > 0) p_.set_internal(y + 2 * n_);
   p_.force(t, q, v, yd + n_);
   for (int i = 0; i < n_; ++i) {
     yd[i] = v[i];
     yd[n_ + i] = -yd[n_ + i];
   }
+  if (nz_ > 0) p_.internal_rate(t, q, v, yd + 2 * n_);
 }
 
 void FirstOrderForm::rhs_jacobian(double t, const double* y, SpMat& J) {
+  if (nz_ > 0) p_.set_internal(y + 2 * n_);
   p_.force_jacobian(t, y, y + n_, K_, C_);
   double* val = J.valuePtr();
   std::fill(val, val + J.nonZeros(), 0.0);
@@ -132,6 +145,8 @@ void FirstOrderForm::rhs_jacobian(double t, const double* y, SpMat& J) {
     val[rhs_C_[e]] -= c[e];
   }
   for (std::size_t i = 0; i < rhs_I_.size(); ++i) val[rhs_I_[i]] += 1.0;
+  if (nz_ == 0) return;
+  zb_.add(p_, t, y, y + n_, val, -1.0);
 }
 
 }  // namespace evas

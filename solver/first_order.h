@@ -5,10 +5,17 @@
 //       Jacobian              dg/dy = [ 0 , I ; -K , -C ]
 // Both matrices have patterns fixed at construction (CSC, int indices);
 // filling them allocates nothing.
+//
+// Internal states z (Problem::internal_count(), differential only; an
+// algebraic one is refused here, as neither explicit form has a place for it):
+// y = [q; v; z], residual rows z' - h(t, q, v, z), rhs rows h, Jacobian blocks
+// Fz = df/dz in (v, z), Hq, Hv, Hz in (z, q), (z, v), (z, z), with signs as for
+// K and C. The problem's current z is set from y before every evaluation.
 #pragma once
 
 #include <vector>
 
+#include "dae/internal_blocks.h"
 #include "solver/problem.h"
 
 namespace evas {
@@ -18,7 +25,9 @@ class FirstOrderForm {
   explicit FirstOrderForm(Problem& p);
 
   Problem& problem() { return p_; }
-  int size() const { return 2 * n_; }
+  int size() const { return 2 * n_ + nz_; }
+  /// Number of internal states (after q and v in y).
+  int internal_count() const { return nz_; }
 
   void residual(double t, const double* y, const double* yd, double* F);
   void residual_jacobian(double t, const double* y, double cj, SpMat& J);
@@ -30,8 +39,10 @@ class FirstOrderForm {
 
  private:
   Problem& p_;
-  int n_;
+  int n_, nz_;
   SpMat K_, C_;
+  dae::InternalBlocks zb_;  // internal states (same positions in both matrices)
+  std::vector<int> pZZ_;    // their (z, z) diagonal
   SpMat Jres_, Jrhs_;
   // value positions in Jres_/Jrhs_ of: the K and C entries (by K_'s value index),
   // the cj diagonal entries, and the +-I entries.

@@ -24,6 +24,24 @@ void Problem::constraint_jacobian(double, const double*, SpMat&) {
 const SpMat& Problem::constraint_pattern() const { return empty_pattern(); }
 std::string Problem::constraint_name(int i) const { return "g" + std::to_string(i + 1); }
 
+bool Problem::internal_algebraic(int) const { throw RunError("problem has no internal states"); }
+void Problem::internal_initial(double, const Vec&, const Vec&, Vec& z) { z.resize(0); }
+void Problem::set_internal(const double*) {}
+void Problem::internal_rate(double, const double*, const double*, double*) {
+  throw RunError("problem has no internal states");
+}
+void Problem::internal_jacobian(double, const double*, const double*, SpMat&, SpMat&, SpMat&,
+                                SpMat&) {
+  throw RunError("problem has no internal states");
+}
+void Problem::internal_patterns(SpMat& Fz, SpMat& Hq, SpMat& Hv, SpMat& Hz) const {
+  Fz.resize(size(), 0);
+  Hq.resize(0, size());
+  Hv.resize(0, size());
+  Hz.resize(0, 0);
+}
+std::string Problem::internal_name(int i) const { return "internal state " + std::to_string(i); }
+
 std::string Problem::describe_coordinate(int i) const { return "coordinate " + std::to_string(i); }
 
 std::string Problem::describe_state(double t, const double* q, const double* v) const {
@@ -36,6 +54,13 @@ std::string Problem::describe_state(double t, const double* q, const double* v) 
   }
   os << ", max|q| = " << mq << ", max|v| = " << mv;
   return os.str();
+}
+
+void start_internal_states(Problem& p, double t, const Vec& q, const Vec& v) {
+  if (p.internal_count() == 0) return;
+  Vec z;
+  p.internal_initial(t, q, v, z);
+  p.set_internal(z.data());
 }
 
 }  // namespace evas

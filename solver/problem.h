@@ -87,6 +87,36 @@ class Problem {
   /// Name of constraint equation i (for outputs and messages), e.g. "weld1.x".
   virtual std::string constraint_name(int i) const;
 
+  // ---- Internal states z (defaults: none) ----
+  // First-order states of the model's elements (e.g. a Maxwell mount branch,
+  // a massless clutch disk): z' = h(t, q, v, z) for differential states,
+  // 0 = h(t, q, v, z) for algebraic ones, with f = f(t, q, v, z). The problem
+  // keeps "the current z": set_internal() stores it, and force(),
+  // force_jacobian(), constraint parts, outputs and messages read it. An
+  // integrator that takes internal states (Integrator::takes_internal_states)
+  // sets z before every evaluation and, after advance(), to the state it
+  // returns; integrate() refuses the others.
+  /// Number of internal states nz (0: none).
+  virtual int internal_count() const { return 0; }
+  /// True for an algebraic state (0 = h_i), false for a differential one.
+  virtual bool internal_algebraic(int i) const;
+  /// Initial states at the initial (q, v), consistent for algebraic ones.
+  virtual void internal_initial(double t, const Vec& q, const Vec& v, Vec& z);
+  /// Stores z (internal_count() values) as the current states.
+  virtual void set_internal(const double* z);
+  /// The current states (internal_count() values; nullptr when there are none).
+  virtual const double* internal() const { return nullptr; }
+  /// h(t, q, v, z) at the current z (internal_count() values).
+  virtual void internal_rate(double t, const double* q, const double* v, double* h);
+  /// Fz = df/dz (n x nz), Hq = dh/dq, Hv = dh/dv (nz x n), Hz = dh/dz (nz x nz) at
+  /// the current z, on the patterns of internal_patterns(); only values are written.
+  virtual void internal_jacobian(double t, const double* q, const double* v, SpMat& Fz, SpMat& Hq,
+                                 SpMat& Hv, SpMat& Hz);
+  /// Patterns of Fz, Hq, Hv, Hz (in that order).
+  virtual void internal_patterns(SpMat& Fz, SpMat& Hq, SpMat& Hv, SpMat& Hz) const;
+  /// Name of state i for messages, e.g. "element 'mount1' z_x".
+  virtual std::string internal_name(int i) const;
+
   /// Human-readable description of where a failure happened (element, body, state).
   virtual std::string describe_state(double t, const double* q, const double* v) const;
   /// What coordinate i of q is, for messages (e.g. "body 'block', mode 12 (elastic, 834 Hz)").
@@ -94,5 +124,10 @@ class Problem {
 
   ProblemCounters counters;
 };
+
+/// Sets the problem's current internal states to their initial values at
+/// (t, q, v) (nothing without states): for outputs recorded before an
+/// integrator's init().
+void start_internal_states(Problem& p, double t, const Vec& q, const Vec& v);
 
 }  // namespace evas

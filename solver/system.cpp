@@ -111,6 +111,7 @@ System::System(Model& model) : model_(model) {
       }
     }
   setup_joints();
+  setup_internal();
 }
 
 void System::initial_state(Vec& q, Vec& v) const {
@@ -212,7 +213,7 @@ void System::force_impl(double t, const double* q, const double* v, double* f) {
     ElementWork& w = ework_[e];
     const auto& ids = el.markers();
     for (std::size_t i = 0; i < ids.size(); ++i) w.motion[i] = motion_[ids[i]];
-    el.evaluate(t, w.motion.data(), w.loads.data());
+    evaluate_element(static_cast<int>(e), t);
     for (std::size_t i = 0; i < ids.size(); ++i) apply_load(ids[i], w.loads[i].F, w.loads[i].M, f);
   }
   if (rank_ > 0) solve_inertia(t, f);
@@ -379,7 +380,10 @@ void System::force_jacobian(double t, const double* q, const double* v, SpMat& K
     const auto& ids = el.markers();
     if (el.inertia_rank() == 0)  // inertial ones keep the motion solve_inertia left
       for (std::size_t i = 0; i < ids.size(); ++i) w.motion[i] = motion_[ids[i]];
-    el.derivatives(t, w.motion.data(), w.D);
+    if (zoff_[e] >= 0)
+      el.derivatives_z(t, w.motion.data(), z_.data() + zoff_[e], w.D);
+    else
+      el.derivatives(t, w.motion.data(), w.D);
     for (std::size_t i = 0; i < ids.size(); ++i) {
       const int bi = markers[ids[i]].body;
       if (bi < 0) continue;
@@ -521,6 +525,7 @@ std::string System::describe_state(double t, const double* q, const double* v) c
        << " (mode " << iv << ")";
     if (!qb.allFinite() || !vb.allFinite()) os << " NON-FINITE";
   }
+  for (int i = 0; i < nz_; ++i) os << "; " << internal_name(i) << " = " << z_[i];
   return os.str();
 }
 

@@ -52,6 +52,23 @@ class System : public Problem {
   bool constraints_linear() const override { return linear_; }
   std::string constraint_name(int i) const override;
 
+  // Element internal states (Element::internal_count; solver/system_internal.cpp).
+  int internal_count() const override { return nz_; }
+  bool internal_algebraic(int i) const override;
+  void internal_initial(double t, const Vec& q, const Vec& v, Vec& z) override;
+  void set_internal(const double* z) override;
+  const double* internal() const override { return nz_ > 0 ? z_.data() : nullptr; }
+  void internal_rate(double t, const double* q, const double* v, double* h) override;
+  void internal_jacobian(double t, const double* q, const double* v, SpMat& Fz, SpMat& Hq,
+                         SpMat& Hv, SpMat& Hz) override;
+  void internal_patterns(SpMat& Fz, SpMat& Hq, SpMat& Hv, SpMat& Hz) const override;
+  std::string internal_name(int i) const override;
+  /// The current internal states of element e (nullptr if it has none).
+  const double* element_internal(int e) const {
+    return zoff_[static_cast<std::size_t>(e)] >= 0 ? z_.data() + zoff_[static_cast<std::size_t>(e)]
+                                                   : nullptr;
+  }
+
   /// Marker motions at (t, q, v), accelerations at qdd = 0 (MarkerMotion::a).
   void update_markers(double t, const double* q, const double* v);
   /// Marker motions for outputs; with inertial elements also the full accelerations
@@ -68,9 +85,10 @@ class System : public Problem {
     std::vector<MarkerMotion> motion;
     std::vector<MarkerLoad> loads;
     Mat D;
-    Mat P, Q;       // inertial elements: 6k x r
-    Vec dacc, r_1;  // scratch: 6k accelerations, r-vector
-    int col = 0;    // first column of this element in U, W
+    Mat P, Q;        // inertial elements: 6k x r
+    Vec dacc, r_1;   // scratch: 6k accelerations, r-vector
+    int col = 0;     // first column of this element in U, W
+    Mat Dz, Hm, Hz;  // internal states: d(loads)/dz, dh/d(motion), dh/dz
   };
   struct BodyWork {
     Vec f0;
@@ -91,6 +109,12 @@ class System : public Problem {
   /// Adds the dense block B (rows of body bi, columns of body bj) into values.
   void add_block(double* values, int bi, int bj, const Eigen::Ref<const Mat>& B) const;
   void reanchor(int body, double t, double* q, double* v);
+  /// Offsets of the element internal states and the patterns of their Jacobians.
+  void setup_internal();
+  /// Copies the current motion of element e's markers into its work; returns it.
+  const MarkerMotion* gather_motion(std::size_t e);
+  /// Element e's loads at the current internal states.
+  void evaluate_element(int e, double t);
 
   struct JointWork {
     int row0 = 0;  // first constraint row
@@ -110,6 +134,12 @@ class System : public Problem {
   SpMat gpattern_;
   Vec zero_;  // joints: zero velocities for constraint_jacobian
   int mrows_ = 0;
+  // internal states
+  int nz_ = 0;
+  Vec z_;
+  std::vector<int> zoff_;   // per element: first state, -1 if none
+  std::vector<int> zelem_;  // per state: its element
+  SpMat fz_pat_, hq_pat_, hv_pat_, hz_pat_;
   bool linear_ = true;
   std::vector<LofState> lof_;
   std::vector<MarkerMotion> motion_;

@@ -90,6 +90,7 @@ RunData run_case(const SceneSource& src, const IntegratorSettings& settings,
       q0 = cs.q;
       v0 = cs.v;
     }
+    start_internal_states(sys, scene.t_start, q0, v0);
     std::vector<double> times = out.times();
     t0 = std::chrono::steady_clock::now();
     timing = true;
