@@ -6,7 +6,8 @@ namespace evas {
 
 EngineMount::EngineMount(std::string name, std::vector<int> markers, std::array<ForceLaw, 3> laws,
                          const Vec3& damping, const Vec3& preload, const Vec3& rot_stiffness,
-                         const Vec3& rot_damping, const Vec3& orientation, const Vec3& offset)
+                         const Vec3& rot_damping, const Vec3& orientation, const Vec3& offset,
+                         const Vec3& maxwell_stiffness, const Vec3& maxwell_damping)
     : Element(std::move(name), std::move(markers)),
       laws_(std::move(laws)),
       c_(damping),
@@ -14,9 +15,80 @@ EngineMount::EngineMount(std::string name, std::vector<int> markers, std::array<
       kr_(rot_stiffness),
       cr_(rot_damping),
       offset_(offset),
-      R_ME_(rotation_from_vector(orientation)) {}
+      k2_(maxwell_stiffness),
+      c2_(maxwell_damping),
+      R_ME_(rotation_from_vector(orientation)) {
+  const char* axes = "xyz";
+  for (int i = 0; i < 3; ++i) {
+    const std::string where = std::string("axis ") + axes[i] + ": ";
+    if (!(k2_[i] >= 0.0) || !(c2_[i] >= 0.0))
+      throw InputError(where + "maxwell_stiffness and maxwell_damping must not be negative");
+    if (k2_[i] > 0.0 && c2_[i] == 0.0)
+      throw InputError(where +
+                       "a Maxwell branch (maxwell_stiffness > 0) needs maxwell_damping > 0");
+    if (c2_[i] > 0.0 && k2_[i] == 0.0)
+      throw InputError(where + "maxwell_damping is given without maxwell_stiffness");
+    if (k2_[i] > 0.0) branch_.push_back(i);
+  }
+}
 
-void EngineMount::evaluate(double, const MarkerMotion* m, MarkerLoad* loads) const {
+Vec3 EngineMount::deflection(const MarkerMotion* m, Mat3& R) const {
+  R = m[0].R * R_ME_;
+  return R.transpose() * (m[1].p - m[0].p) - offset_;
+}
+
+void EngineMount::states_or_unloaded(const MarkerMotion* m, const double* z, double* out) const {
+  Mat3 R;
+  const Vec3 d = z ? Vec3::Zero() : deflection(m, R);
+  for (std::size_t j = 0; j < branch_.size(); ++j) out[j] = z ? z[j] : d[branch_[j]];
+}
+
+std::string EngineMount::internal_name(int i) const {
+  return std::string("z_") + "xyz"[branch_.at(static_cast<std::size_t>(i))];
+}
+
+void EngineMount::internal_initial(double, const MarkerMotion* m, double* z) const {
+  states_or_unloaded(m, nullptr, z);
+}
+
+void EngineMount::evaluate(double t, const MarkerMotion* m, MarkerLoad* loads) const {
+  double z[3];
+  states_or_unloaded(m, nullptr, z);
+  evaluate_z(t, m, z, loads);
+}
+
+void EngineMount::internal_rate(double, const MarkerMotion* m, const double* z, double* h) const {
+  Mat3 R;
+  const Vec3 d = deflection(m, R);
+  for (std::size_t j = 0; j < branch_.size(); ++j) {
+    const int i = branch_[j];
+    h[j] = k2_[i] / c2_[i] * (d[i] - z[j]);
+  }
+}
+
+void EngineMount::internal_derivatives(double, const MarkerMotion* m, const double* z, Mat& Dz,
+                                       Mat& Hm, Mat& Hz) const {
+  (void)z;
+  const Mat3 R = m[0].R * R_ME_;
+  const Vec3 dp = m[1].p - m[0].p;
+  Dz.setZero();
+  Hm.setZero();
+  Hz.setZero();
+  for (std::size_t j = 0; j < branch_.size(); ++j) {
+    const int i = branch_[j], c = static_cast<int>(j);
+    const Vec3 dF1 = k2_[i] * R.col(i);  // dF1/dz_j
+    Dz.block<3, 1>(6, c) = dF1;
+    Dz.block<3, 1>(0, c) = -dF1;
+    Dz.block<3, 1>(3, c) = -dp.cross(dF1);
+    const double rate = k2_[i] / c2_[i];
+    Hm.block<1, 3>(c, 12) = rate * R.col(i).transpose();  // dd_i/dp1 = e_i^T R^T
+    Hm.block<1, 3>(c, 0) = -rate * R.col(i).transpose();
+    Hz(c, c) = -rate;
+  }
+}
+
+void EngineMount::evaluate_z(double, const MarkerMotion* m, const double* z,
+                             MarkerLoad* loads) const {
   const Mat3 R = m[0].R * R_ME_;
   const Vec3 dp = m[1].p - m[0].p;
   const Vec3 d = R.transpose() * dp - offset_;
@@ -25,6 +97,8 @@ void EngineMount::evaluate(double, const MarkerMotion* m, MarkerLoad* loads) con
   const Vec3 dw = R.transpose() * (m[1].w - m[0].w);
   Vec3 FE;
   for (int i = 0; i < 3; ++i) FE[i] = preload_[i] - laws_[i].value(d[i]) - c_[i] * dv[i];
+  for (std::size_t j = 0; j < branch_.size(); ++j)
+    FE[branch_[j]] -= k2_[branch_[j]] * (d[branch_[j]] - z[j]);
   const Vec3 F1 = R * FE;
   const Vec3 M1 = R * (-(kr_.cwiseProduct(r) + cr_.cwiseProduct(dw)));
   loads[1].F = F1;
@@ -33,7 +107,25 @@ void EngineMount::evaluate(double, const MarkerMotion* m, MarkerLoad* loads) con
   loads[0].M = -M1 - dp.cross(F1);
 }
 
-void EngineMount::derivatives(double, const MarkerMotion* m, Mat& D) const {
+void EngineMount::derivatives(double t, const MarkerMotion* m, Mat& D) const {
+  double z[3];
+  states_or_unloaded(m, nullptr, z);
+  derivatives_z(t, m, z, D);
+  if (branch_.empty()) return;
+  // the unloaded branch (z = d) adds no force: take its stiffness out again
+  Mat Dz(12, static_cast<Eigen::Index>(branch_.size())), Hm, Hz;
+  Hm.setZero(static_cast<Eigen::Index>(branch_.size()), 24);
+  Hz.setZero(static_cast<Eigen::Index>(branch_.size()), static_cast<Eigen::Index>(branch_.size()));
+  internal_derivatives(t, m, z, Dz, Hm, Hz);
+  for (std::size_t j = 0; j < branch_.size(); ++j) {
+    const int i = branch_[j];
+    // dz_j/d(motion) = dd_i/d(motion) = Hm row j * c2 / k2
+    D.noalias() += Dz.col(static_cast<Eigen::Index>(j)) *
+                   (c2_[i] / k2_[i] * Hm.row(static_cast<Eigen::Index>(j)));
+  }
+}
+
+void EngineMount::derivatives_z(double, const MarkerMotion* m, const double* z, Mat& D) const {
   const Mat3 R = m[0].R * R_ME_;
   const Vec3 dp = m[1].p - m[0].p;
   const Vec3 d = R.transpose() * dp - offset_;
@@ -44,6 +136,11 @@ void EngineMount::derivatives(double, const MarkerMotion* m, Mat& D) const {
     laws_[i].eval(d[i], f, df);
     FE[i] = preload_[i] - f - c_[i] * dv[i];
     kt[i] = df;  // tangent stiffness of axis i
+  }
+  for (std::size_t j = 0; j < branch_.size(); ++j) {
+    const int i = branch_[j];
+    FE[i] -= k2_[i] * (d[i] - z[j]);
+    kt[i] += k2_[i];
   }
   const Vec3 F1 = R * FE;
   const Mat3 Kg = R * kt.asDiagonal() * R.transpose();
@@ -66,13 +163,23 @@ void EngineMount::derivatives(double, const MarkerMotion* m, Mat& D) const {
 }
 
 std::vector<Channel> EngineMount::channels() const {
-  return {{"fx", "N"},   {"fy", "N"}, {"fz", "N"}, {"mx", "N m"}, {"my", "N m"},
-          {"mz", "N m"}, {"dx", "m"}, {"dy", "m"}, {"dz", "m"}};
+  std::vector<Channel> c = {{"fx", "N"},   {"fy", "N"}, {"fz", "N"}, {"mx", "N m"}, {"my", "N m"},
+                            {"mz", "N m"}, {"dx", "m"}, {"dy", "m"}, {"dz", "m"}};
+  for (int i : branch_) c.push_back({std::string("maxwell_f") + "xyz"[i], "N"});
+  for (int i : branch_) c.push_back({std::string("z_") + "xyz"[i], "m"});
+  return c;
 }
 
 void EngineMount::channel_values(double t, const MarkerMotion* m, double* out) const {
+  double z[3];
+  states_or_unloaded(m, nullptr, z);
+  channel_values_z(t, m, z, out);
+}
+
+void EngineMount::channel_values_z(double t, const MarkerMotion* m, const double* z,
+                                   double* out) const {
   MarkerLoad loads[2];
-  evaluate(t, m, loads);
+  evaluate_z(t, m, z, loads);
   const Mat3 R = m[0].R * R_ME_;
   const Vec3 F = R.transpose() * loads[1].F, M = R.transpose() * loads[1].M;
   const Vec3 d = R.transpose() * (m[1].p - m[0].p) - offset_;
@@ -80,6 +187,12 @@ void EngineMount::channel_values(double t, const MarkerMotion* m, double* out) c
     out[i] = F[i];
     out[3 + i] = M[i];
     out[6 + i] = d[i];
+  }
+  const std::size_t nb = branch_.size();
+  for (std::size_t j = 0; j < nb; ++j) {
+    const int i = branch_[j];
+    out[9 + j] = -k2_[i] * (d[i] - z[j]);
+    out[9 + nb + j] = z[j];
   }
 }
 
@@ -129,6 +242,14 @@ ElementType engine_mount_element_type() {
       vector_param("offset", K::Vector3, "m",
                    "position of marker 1 relative to marker 0 at zero deflection (mount axes)",
                    {0.0, 0.0, 0.0}),
+      vector_param("maxwell_stiffness", K::Vector3, "N/m",
+                   "Maxwell branch per mount axis: spring k2 in series with a dashpot, parallel "
+                   "to the law (0: no branch); each branch is an internal state, z' = (k2 / c2) "
+                   "(d - z), force -k2 (d - z)",
+                   {0.0, 0.0, 0.0}, 0.0),
+      vector_param("maxwell_damping", K::Vector3, "N s/m",
+                   "dashpot c2 of each Maxwell branch (> 0 where maxwell_stiffness > 0)",
+                   {0.0, 0.0, 0.0}, 0.0),
   };
   t.make = [](const std::string& name, const std::vector<int>& markers,
               const ParamValues& v) -> std::unique_ptr<Element> {
@@ -144,7 +265,8 @@ ElementType engine_mount_element_type() {
     }
     return std::make_unique<EngineMount>(name, markers, laws, v.vec3("damping"), v.vec3("preload"),
                                          v.vec3("rot_stiffness"), v.vec3("rot_damping"),
-                                         v.vec3("orientation"), v.vec3("offset"));
+                                         v.vec3("orientation"), v.vec3("offset"),
+                                         v.vec3("maxwell_stiffness"), v.vec3("maxwell_damping"));
   };
   return t;
 }

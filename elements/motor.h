@@ -15,6 +15,21 @@
 // torsional spring-damper between two markers.
 // Derivatives (analytic, constant):
 //   dM_0/dpsi_0 = -K_r a a^T, dM_0/dw_0 = -C_r a a^T, opposite signs for marker 1.
+//
+// Clutch disk (optional, beyond the paper): with clutch_stiffness K_c > 0 a
+// massless disk sits between the dynamometer's spring-damper (K_r, C_r) and the
+// clutch marker, joined to it by a clutch spring-damper (K_c, C_c). Its angle
+// theta_d (relative to the stator) and speed omega_d are element internal
+// states; having no inertia, the disk's torque balance replaces Newton's law
+// and omega_d is an ALGEBRAIC variable (index 1 when C_r + C_c > 0):
+//   theta_d' = omega_d
+//   0 = K_r (theta_1 - theta_d) + C_r (w - omega_d) - T_c
+//   T_c = K_c (theta_d - theta_2) + C_c (omega_d - theta_2_dot)   (torque on the crank)
+// Loads: M_0 = T_c a, M_1 = -T_c a. The start (internal_initial) has the disk
+// turning with the crank and passing the dynamometer's torque on:
+//   theta_d = (K_r theta_1 + C_r (w - theta_2_dot) + K_c theta_2) / (K_r + K_c),
+// omega_d from the balance (= theta_2_dot); the z-free evaluate() uses that
+// quasi-static disk, whose torque is Eq. 5's times K_c / (K_r + K_c).
 #pragma once
 
 #include "elements/element.h"
@@ -28,19 +43,39 @@ class Motor : public Element {
   bool needs_rotation(std::size_t) const override { return true; }
   /// axis: any non-zero vector (normalised); speed [rad/s]; theta0 [rad].
   Motor(std::string name, std::vector<int> markers, const Vec3& axis, double speed, double theta0,
-        double K_r, double C_r);
+        double K_r, double C_r, double K_c = 0.0, double C_c = 0.0);
   std::string type() const override { return "motor"; }
   void evaluate(double t, const MarkerMotion* m, MarkerLoad* loads) const override;
   void derivatives(double t, const MarkerMotion* m, Mat& D) const override;
   std::vector<Channel> channels() const override;
   void channel_values(double t, const MarkerMotion* m, double* out) const override;
 
-  /// Twist theta_2 - theta_1 [rad] and clutch torque T [N m] at (t, motion).
+  /// Twist theta_2 - theta_1 [rad] and clutch torque T [N m] at (t, motion)
+  /// (with a clutch disk: at its quasi-static state).
   void torque(double t, const MarkerMotion* m, double& twist, double& T) const;
 
+  // Clutch disk: states (theta_d, omega_d), the second algebraic.
+  int internal_count() const override { return disk_ ? 2 : 0; }
+  bool internal_algebraic(int i) const override { return i == 1; }
+  std::string internal_name(int i) const override { return i == 0 ? "theta_d" : "omega_d"; }
+  void internal_initial(double t, const MarkerMotion* m, double* z) const override;
+  void evaluate_z(double t, const MarkerMotion* m, const double* z,
+                  MarkerLoad* loads) const override;
+  void derivatives_z(double t, const MarkerMotion* m, const double* z, Mat& D) const override;
+  void channel_values_z(double t, const MarkerMotion* m, const double* z,
+                        double* out) const override;
+  void internal_rate(double t, const MarkerMotion* m, const double* z, double* h) const override;
+  void internal_derivatives(double t, const MarkerMotion* m, const double* z, Mat& Dz, Mat& Hm,
+                            Mat& Hz) const override;
+
  private:
+  /// The clutch torque on the crank at disk states z.
+  double clutch_torque(const MarkerMotion* m, const double* z) const;
+  /// Spring-damper derivative rows of D for stiffness k, damping c.
+  void spring_damper_rows(double k, double c, Mat& D) const;
   Vec3 a_;
-  double w_, th0_, K_, C_;
+  double w_, th0_, K_, C_, Kc_, Cc_;
+  bool disk_;
 };
 
 /// Declaration for the registry ("motor").
