@@ -22,8 +22,9 @@ using dae::value_position;
 FirstOrderForm::FirstOrderForm(Problem& p) : p_(p), n_(p.size()), nz_(p.internal_count()) {
   for (int i = 0; i < nz_; ++i)
     if (p.internal_algebraic(i))
-      throw InputError(p.internal_name(i) +
-                       " is algebraic: this integrator takes ODEs only (use ida)");
+      throw InputError(
+          p.internal_name(i) +
+          ": this integrator takes differential states only, not algebraic ones (use ida)");
   K_ = p.jacobian_pattern();
   K_.makeCompressed();
   if (K_.rows() != n_ || K_.cols() != n_)
