@@ -116,6 +116,9 @@ pid_t spawn_evas(const std::vector<std::string>& args, const fs::path& log,
       close(fd);
     }
     if (!cwd.empty() && chdir(cwd.c_str()) != 0) _exit(120);
+    // default dispositions: a test run started under nohup (SIGHUP ignored, which
+    // evas keeps, as it should) must still see evas handle the signals it sends
+    for (int sig : {SIGHUP, SIGINT, SIGTERM}) signal(sig, SIG_DFL);
     execve(exe.c_str(), argv.data(), envp.data());
     _exit(127);
   }
