@@ -47,6 +47,7 @@
 #include "dae/formulation.h"
 #include "dae/penalty.h"
 #include "integrators/common.h"
+#include "integrators/second_order_ls.h"
 #include "integrators/sundials_util.h"
 #include "solver/first_order.h"
 
@@ -113,7 +114,23 @@ class IdaIntegrator final : public Integrator {
     else
       check(IDASStolerances(mem_, s.rtol, s.atol), "IDASStolerances");
     check(IDASetUserData(mem_, this), "IDASetUserData");
-    ls_.create(s.linear_solver, J_, y_.get(), ctx_);
+    so_.reset();
+    if (s.linear_solver == "second-order") {
+      if (dae_)
+        throw InputError(
+            "ida: linear_solver second-order needs a problem with unit mass, no constraints and "
+            "no internal states (this one has " +
+            std::string(model->constraint_count() > 0 ? "constraints"
+                        : model->has_mass()           ? "a mass matrix"
+                                                      : "internal states") +
+            "); use klu");
+      so_ = std::make_unique<SecondOrderSolver>(model->jacobian_pattern());
+      ls_.adopt(sundials::second_order_matrix(ctx_, so_.get()),
+                sundials::second_order_linear_solver(ctx_, so_.get()));
+      reuse_ = Reuse{};
+    } else {
+      ls_.create(s.linear_solver, J_, y_.get(), ctx_);
+    }
     check(IDASetLinearSolver(mem_, ls_.solver(), ls_.matrix()), "IDASetLinearSolver");
     check(IDASetJacFn(mem_, &IdaIntegrator::jacobian_cb), "IDASetJacFn");
     if (s.max_step > 0.0) check(IDASetMaxStep(mem_, s.max_step), "IDASetMaxStep");
@@ -177,6 +194,7 @@ class IdaIntegrator final : public Integrator {
     if (dae_ && dae_->internal_count() > 0) p_->set_internal(y_.data() + dae_->z_offset());
     set_state(t, q, v);
     check(IDAReInit(mem_, t, y_.get(), yd_.get()), "IDAReInit");
+    reuse_ = Reuse{};
     t_ = t;
     if (dae_) start_dae(t);
   }
@@ -262,6 +280,7 @@ class IdaIntegrator final : public Integrator {
     IDAGetNumLinResEvals(mem_, &nre_ls);  // residual evaluations for FD Jacobians: 0 here
     s.residual_evals += nre_ls;
     IDAGetNumJacEvals(mem_, &s.jacobian_evals);
+    if (so_) s.jacobian_evals = reuse_.evaluations;  // K, C evaluated (the rest re-formed)
     IDAGetNumLinSolvSetups(mem_, &s.linear_setups);
     IDAGetNumNonlinSolvIters(mem_, &nni);
     s.nonlinear_iterations = nni;
@@ -351,6 +370,10 @@ class IdaIntegrator final : public Integrator {
                          SUNMatrix J, void* user, N_Vector, N_Vector, N_Vector) {
     auto* self = static_cast<IdaIntegrator*>(user);
     return self->guard_.run([&] {
+      if (self->so_) {
+        self->second_order_jacobian(t, cj, N_VGetArrayPointer(y));
+        return;
+      }
       if (self->dae_)
         self->dae_->residual_jacobian(t, N_VGetArrayPointer(y), N_VGetArrayPointer(yd), cj,
                                       self->J_);
@@ -358,6 +381,26 @@ class IdaIntegrator final : public Integrator {
         self->form_->residual_jacobian(t, N_VGetArrayPointer(y), cj, self->J_);
       self->ls_.copy(self->J_, J);
     });
+  }
+
+  // linear_solver=second-order: K and C at (t, y) unless the last ones may be
+  // reused (younger than jacobian_age steps, no convergence failure since), then
+  // the coefficients of IDA's matrix [cj I, -I; K, C + cj I] for the factorization.
+  void second_order_jacobian(double t, double cj, const double* y) {
+    long steps = 0, fails = 0;
+    IDAGetNumSteps(mem_, &steps);
+    IDAGetNumNonlinSolvConvFails(mem_, &fails);
+    // (IDA's counters restart at IDAReInit, which also resets reuse_)
+    const bool fresh = !reuse_.valid || fails != reuse_.fails ||
+                       steps - reuse_.step >= static_cast<long>(s_.jacobian_age);
+    if (fresh) {
+      form_->problem().force_jacobian(t, y, y + n_, so_->K(), so_->C());
+      reuse_.valid = true;
+      reuse_.step = steps;
+      reuse_.fails = fails;
+      ++reuse_.evaluations;
+    }
+    so_->set_coefficients(cj, -1.0, 1.0, cj, 1.0);
   }
 
   // Error weights 1/(rtol |y_i| + atol), times h^p_i for the higher-index
@@ -390,7 +433,14 @@ class IdaIntegrator final : public Integrator {
   std::unique_ptr<dae::PenaltyProblem> penalty_;  // formulation=penalty: the ODE run
   std::unique_ptr<FirstOrderForm> form_;          // M = I, no constraints (or penalty)
   std::unique_ptr<dae::DaeForm> dae_;             // mass matrix or constraints
-  Vec lambda_;                                    // multipliers at the last state returned
+  std::unique_ptr<SecondOrderSolver> so_;         // linear_solver=second-order
+  struct Reuse {
+    bool valid = false;    // K, C in so_ are from an evaluation of this segment
+    long step = 0;         // IDA's step count at that evaluation
+    long fails = 0;        // ... and its convergence-failure count
+    long evaluations = 0;  // K, C evaluations in this segment
+  } reuse_;
+  Vec lambda_;  // multipliers at the last state returned
   SpMat J_;
   Problem* p_ = nullptr;
   IntegratorSettings s_;

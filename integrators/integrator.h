@@ -24,15 +24,21 @@ struct IntegratorSettings {
   std::string name = "ida";
   double rtol = 1e-6;
   double atol = 1e-8;
-  double step = 1e-4;                 ///< fixed step (generalized-alpha, linear-acceleration) [s]
-  double max_step = 0.0;              ///< adaptive methods: 0 = no limit [s]
-  std::string linear_solver = "klu";  ///< ida, cvode: "klu" or "dense"
-  std::string method = "bdf";         ///< cvode: "bdf" or "adams"
-  double rho_inf = 0.8;               ///< generalized-alpha spectral radius at infinity, [0, 1]
-  double balance_tol = 1e-3;          ///< linear-acceleration: balance error tolerance (0.1 %)
-  int max_iterations = 50;            ///< fixed-point / Newton iterations per step
-  long max_steps = 10000000;          ///< adaptive methods: steps per output interval
-  int max_order = 0;                  ///< ida, cvode: largest BDF/Adams order (0 = solver's)
+  double step = 1e-4;     ///< fixed step (generalized-alpha, linear-acceleration) [s]
+  double max_step = 0.0;  ///< adaptive methods: 0 = no limit [s]
+  /// ida, cvode: "klu", "dense" or "second-order" (the n x n reduced matrix,
+  /// integrators/second_order_ls.h; problems with M = I, no constraints, no states)
+  std::string linear_solver = "klu";
+  /// ida with linear_solver=second-order: steps over which K and C are reused
+  /// (re-formed at IDA's new cj) before being evaluated again; 0 = at every setup.
+  /// A Newton convergence failure always forces a fresh evaluation.
+  int jacobian_age = 10;
+  std::string method = "bdf";  ///< cvode: "bdf" or "adams"
+  double rho_inf = 0.8;        ///< generalized-alpha spectral radius at infinity, [0, 1]
+  double balance_tol = 1e-3;   ///< linear-acceleration: balance error tolerance (0.1 %)
+  int max_iterations = 50;     ///< fixed-point / Newton iterations per step
+  long max_steps = 10000000;   ///< adaptive methods: steps per output interval
+  int max_order = 0;           ///< ida, cvode: largest BDF/Adams order (0 = solver's)
   /// generalized-alpha, linear-acceleration: "default" (fixed-point for
   /// linear-acceleration, effective-mass for generalized-alpha), "fixed-point",
   /// "anderson", "effective-mass" or "newton"

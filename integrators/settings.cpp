@@ -149,10 +149,16 @@ const std::vector<Entry>& table() {
              &S::balance_tol, 0.0, 1.0, true),
       integer("max_iterations", "generalized-alpha, linear-acceleration", "iterations per step",
               &S::max_iterations, 1, 100000),
-      choice("linear_solver", "ida, cvode", "direct linear solver", &S::linear_solver,
+      choice("linear_solver", "ida, cvode",
+             "direct linear solver: klu or dense on the 2n x 2n first-order matrix, "
+             "second-order on the n x n matrix K + cj C + cj^2 I (theory 7.9)",
+             &S::linear_solver,
              [] {
-               return std::vector<std::string>{"klu", "dense"};
+               return std::vector<std::string>{"klu", "dense", "second-order"};
              }),
+      integer("jacobian_age", "ida: linear_solver=second-order",
+              "steps a Jacobian is reused over (0 = evaluated at every factorization)",
+              &S::jacobian_age, 0, 1000000),
       choice("method", "cvode", "linear multistep family", &S::method,
              [] {
                return std::vector<std::string>{"bdf", "adams"};

@@ -132,6 +132,14 @@ class LinearSystem {
     A_ = nullptr;
   }
 
+  /// Takes ownership of a matrix and solver made elsewhere (second_order_ls.h).
+  void adopt(SUNMatrix A, SUNLinearSolver LS) {
+    reset();
+    A_ = A;
+    LS_ = LS;
+    sparse_ = false;
+  }
+
   SUNMatrix matrix() const { return A_; }
   SUNLinearSolver solver() const { return LS_; }
 

@@ -83,6 +83,17 @@ Marker make_ground_marker(const std::string& name, const Vec3& p_G, const Mat3& 
 void marker_motion(const Marker& m, const LofState& L, const double* q, const double* v,
                    MarkerMotion& out) {
   if (m.on_ground()) {
+    marker_motion(m, L, Vec3::Zero(), Vec3::Zero(), Vec3::Zero(), Vec3::Zero(), out);
+    return;
+  }
+  const Eigen::Index n = m.Bu.cols();
+  Eigen::Map<const Vec> qm(q, n), vm(v, n);
+  marker_motion(m, L, m.Bu * qm, m.Bt * qm, m.Bu * vm, m.Bt * vm, out);
+}
+
+void marker_motion(const Marker& m, const LofState& L, const Vec3& uq, const Vec3& tq,
+                   const Vec3& uv, const Vec3& tv, MarkerMotion& out) {
+  if (m.on_ground()) {
     out.p = m.c;
     out.v.setZero();
     out.psi.setZero();
@@ -92,19 +103,16 @@ void marker_motion(const Marker& m, const LofState& L, const double* q, const do
     out.al.setZero();
     return;
   }
-  const Eigen::Index n = m.Bu.cols();
-  Eigen::Map<const Vec> qm(q, n), vm(v, n);
-  const Vec3 r_L = m.c + m.Bu * qm;
-  const Vec3 r_G = L.R_GL * r_L;
+  const Vec3 r_G = L.R_GL * (m.c + uq);
   out.p = L.p_GL + r_G;
-  const Vec3 u_G = L.R_GL * (m.Bu * vm);
-  const Vec3 t_G = L.R_GL * (m.Bt * vm);
-  out.v = L.v_GL + L.w_GL_G.cross(r_G) + u_G;
-  out.psi = L.psi_G + L.R_GL * (m.Bt * qm);
+  const Vec3 u_G = L.R_GL * uv;
+  const Vec3 t_G = L.R_GL * tv;
+  const Vec3 wr = L.w_GL_G.cross(r_G);
+  out.v = L.v_GL + wr + u_G;
+  out.psi = L.psi_G + L.R_GL * tq;
   out.w = L.w_GL_G + t_G;
-  out.R = L.R_GL * m.R_LM;
-  out.a = L.a_GL + L.al_GL_G.cross(r_G) + L.w_GL_G.cross(L.w_GL_G.cross(r_G)) +
-          2.0 * L.w_GL_G.cross(u_G);
+  out.R.noalias() = L.R_GL * m.R_LM;
+  out.a = L.a_GL + L.al_GL_G.cross(r_G) + L.w_GL_G.cross(wr) + 2.0 * L.w_GL_G.cross(u_G);
   out.al = L.al_GL_G + L.w_GL_G.cross(t_G);
 }
 

@@ -67,5 +67,9 @@ Marker make_ground_marker(const std::string& name, const Vec3& p_G, const Mat3& 
 /// (r = R (c + Bu q)); the modal part R Bu qdd, R Bt qdd is added by the caller.
 void marker_motion(const Marker& m, const LofState& L, const double* q, const double* v,
                    MarkerMotion& out);
+/// The same from the modal products uq = Bu q, tq = Bt q, uv = Bu v, tv = Bt v
+/// (L components; System computes them for all markers of a body at once).
+void marker_motion(const Marker& m, const LofState& L, const Vec3& uq, const Vec3& tq,
+                   const Vec3& uv, const Vec3& tv, MarkerMotion& out);
 
 }  // namespace evas

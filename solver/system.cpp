@@ -34,11 +34,34 @@ System::System(Model& model) : model_(model) {
   }
   buf_a_.assign(12 * nmax, 0.0);
   buf_b_.assign(static_cast<std::size_t>(nmax) * nmax, 0.0);
+  mrow_.assign(markers.size(), -1);
+  std::vector<int> rows(static_cast<std::size_t>(nb), 0);
+  for (std::size_t m = 0; m < markers.size(); ++m)
+    if (!markers[m].on_ground()) {
+      mrow_[m] = rows[markers[m].body];
+      rows[markers[m].body] += 6;
+    }
+  bstack_.resize(nb);
+  bq_.resize(nb);
+  bv_.resize(nb);
+  bload_.resize(nb);
+  for (int b = 0; b < nb; ++b) {
+    bstack_[b] = Mat::Zero(rows[b], bodies[b].n());
+    bq_[b] = Vec::Zero(rows[b]);
+    bv_[b] = Vec::Zero(rows[b]);
+    bload_[b] = Vec::Zero(rows[b]);
+  }
+  for (std::size_t m = 0; m < markers.size(); ++m)
+    if (mrow_[m] >= 0) {
+      bstack_[markers[m].body].middleRows(mrow_[m], 3) = markers[m].Bu;
+      bstack_[markers[m].body].middleRows(mrow_[m] + 3, 3) = markers[m].Bt;
+    }
 
   // Pattern: dense diagonal body blocks plus body-pair blocks of every element.
   std::vector<char> pair(static_cast<std::size_t>(nb) * nb, 0);
   for (int b = 0; b < nb; ++b) pair[b * nb + b] = 1;
   ework_.resize(model_.elements().size());
+  pair_index_.assign(static_cast<std::size_t>(nb) * nb, -1);
   for (std::size_t e = 0; e < model_.elements().size(); ++e) {
     const auto& el = *model_.elements()[e];
     const std::size_t k = el.markers().size();
@@ -48,7 +71,18 @@ System::System(Model& model) : model_(model) {
     for (int mi : el.markers())
       for (int mj : el.markers()) {
         const int bi = markers[mi].body, bj = markers[mj].body;
-        if (bi >= 0 && bj >= 0) pair[bi * nb + bj] = 1;
+        if (bi < 0 || bj < 0) continue;
+        pair[bi * nb + bj] = 1;
+        if (pair_index_[bi * nb + bj] < 0) {
+          pair_index_[bi * nb + bj] = static_cast<int>(pairs_.size());
+          PairWork pw;
+          pw.bi = bi;
+          pw.bj = bj;
+          pw.YK = Mat::Zero(rows[bi], bodies[bj].n());
+          pw.YC = Mat::Zero(rows[bi], bodies[bj].n());
+          pw.blk = Mat::Zero(bodies[bi].n(), bodies[bj].n());
+          pairs_.push_back(std::move(pw));
+        }
       }
     if (const int r = el.inertia_rank(); r > 0) {
       inertial_.push_back(static_cast<int>(e));
@@ -141,6 +175,7 @@ void System::update_lof(double t) {
     if (!w.built || (W - w.W).norm() > tol || (Om - w.Om).norm() > tol) {
       frame_matrices(bodies[b].inv, W, Om, w.KW, w.G);
       add_rotation_correction(bodies[b], w_L, al_L, w.KW);
+      w.frame_free = w.KW.isZero(0.0) && w.G.isZero(0.0);
       w.W = W;
       w.Om = Om;
       w.built = true;
@@ -171,10 +206,21 @@ void System::update_markers(double t, const double* q, const double* v) {
   const auto& markers = model_.markers();
   const auto& bodies = model_.bodies();
   static const LofState ground;
+  for (std::size_t b = 0; b < bodies.size(); ++b) {
+    Eigen::Map<const Vec> qb(q + bodies[b].offset, bodies[b].n()),
+        vb(v + bodies[b].offset, bodies[b].n());
+    bq_[b].noalias() = bstack_[b] * qb;
+    bv_[b].noalias() = bstack_[b] * vb;
+  }
   for (std::size_t m = 0; m < markers.size(); ++m) {
     const int b = markers[m].body;
-    const int off = b >= 0 ? bodies[b].offset : 0;
-    marker_motion(markers[m], b >= 0 ? lof_[b] : ground, q + off, v + off, motion_[m]);
+    if (b < 0) {
+      marker_motion(markers[m], ground, nullptr, nullptr, motion_[m]);
+      continue;
+    }
+    const int r = mrow_[m];
+    marker_motion(markers[m], lof_[b], bq_[b].segment<3>(r), bq_[b].segment<3>(r + 3),
+                  bv_[b].segment<3>(r), bv_[b].segment<3>(r + 3), motion_[m]);
   }
 }
 
@@ -195,6 +241,23 @@ void System::apply_load(int id, const Vec3& F, const Vec3& M, double* f) const {
   fb.noalias() -= m.Bt.transpose() * M_L;
 }
 
+void System::accumulate_load(int id, const Vec3& F, const Vec3& M) {
+  const int b = model_.markers()[id].body;
+  if (b < 0) return;
+  const Mat3& R = lof_[b].R_GL;
+  const int r = mrow_[id];
+  bload_[b].segment<3>(r).noalias() += R.transpose() * F;
+  bload_[b].segment<3>(r + 3).noalias() += R.transpose() * M;
+}
+
+void System::flush_loads(double* f) {
+  const auto& bodies = model_.bodies();
+  for (std::size_t b = 0; b < bodies.size(); ++b) {
+    Eigen::Map<Vec> fb(f + bodies[b].offset, bodies[b].n());
+    fb.noalias() -= bstack_[b].transpose() * bload_[b];
+  }
+}
+
 void System::force_impl(double t, const double* q, const double* v, double* f) {
   update_markers(t, q, v);
   const auto& bodies = model_.bodies();
@@ -204,9 +267,12 @@ void System::force_impl(double t, const double* q, const double* v, double* f) {
     Eigen::Map<const Vec> qb(q + B.offset, B.n()), vb(v + B.offset, B.n());
     Eigen::Map<Vec> fb(f + B.offset, B.n());
     fb = W.f0 + B.data->eigenvalues.cwiseProduct(qb) + B.data->damping.cwiseProduct(vb);
-    fb.noalias() += W.KW * qb;
-    fb.noalias() += W.G * vb;
+    if (!W.frame_free) {  // (a fixed frame: KW = G = 0)
+      fb.noalias() += W.KW * qb;
+      fb.noalias() += W.G * vb;
+    }
   }
+  for (auto& l : bload_) l.setZero();
   for (std::size_t e = 0; e < ework_.size(); ++e) {
     const Element& el = *model_.elements()[e];
     if (el.inertia_rank() > 0) continue;
@@ -214,8 +280,10 @@ void System::force_impl(double t, const double* q, const double* v, double* f) {
     const auto& ids = el.markers();
     for (std::size_t i = 0; i < ids.size(); ++i) w.motion[i] = motion_[ids[i]];
     evaluate_element(static_cast<int>(e), t);
-    for (std::size_t i = 0; i < ids.size(); ++i) apply_load(ids[i], w.loads[i].F, w.loads[i].M, f);
+    for (std::size_t i = 0; i < ids.size(); ++i)
+      accumulate_load(ids[i], w.loads[i].F, w.loads[i].M);
   }
+  flush_loads(f);
   if (rank_ > 0) solve_inertia(t, f);
 }
 
@@ -371,9 +439,11 @@ void System::force_jacobian(double t, const double* q, const double* v, SpMat& K
     update_markers(t, q, v);
   body_operator(t, K, C);
   const auto& markers = model_.markers();
-  const auto& bodies = model_.bodies();
-  for (std::size_t m = 0; m < markers.size(); ++m)
-    if (!markers[m].on_ground()) marker_maps(static_cast<int>(m));
+  for (auto& pw : pairs_) {
+    pw.YK.setZero();
+    pw.YC.setZero();
+  }
+  const int nb = static_cast<int>(model_.bodies().size());
   for (std::size_t e = 0; e < ework_.size(); ++e) {
     const Element& el = *model_.elements()[e];
     ElementWork& w = ework_[e];
@@ -387,22 +457,43 @@ void System::force_jacobian(double t, const double* q, const double* v, SpMat& K
     for (std::size_t i = 0; i < ids.size(); ++i) {
       const int bi = markers[ids[i]].body;
       if (bi < 0) continue;
+      const Mat3& Ri = lof_[bi].R_GL;
       for (std::size_t j = 0; j < ids.size(); ++j) {
         const int bj = markers[ids[j]].body;
         if (bj < 0) continue;
-        const int ni = bodies[bi].n(), nj = bodies[bj].n();
-        Eigen::Map<Mat> T(buf_a_.data(), 6, nj);
-        Eigen::Map<Mat> Blk(buf_b_.data(), ni, nj);
+        const Mat3& Rj = lof_[bj].R_GL;
+        // D_ij's columns act on the motion (p, v, psi, w) of marker j, whose
+        // derivatives are Pq = [Lu; skew(w) Lu; Lt; 0], Pv = [0; Lu; 0; Lt] with
+        // Lu = R Bu, Lt = R Bt: D_ij Pq = EK [R Bu; R Bt], D_ij Pv = EC [R Bu; R Bt];
+        // loads Lm_i^T = [Bu; Bt]^T diag(R^T, R^T): the 6 x 6 blocks in L components.
         const auto Dij = w.D.block(6 * i, 12 * j, 6, 12);
-        // dQ_i/dq_j = Lm_i^T D_ij Pq_j ; f = ... - Q  =>  K -= Lm_i^T D_ij Pq_j
-        T.noalias() = Dij * Pq_[ids[j]];
-        Blk.noalias() = -Lm_[ids[i]].transpose() * T;
-        add_block(K.valuePtr(), bi, bj, Blk);
-        T.noalias() = Dij * Pv_[ids[j]];
-        Blk.noalias() = -Lm_[ids[i]].transpose() * T;
-        add_block(C.valuePtr(), bi, bj, Blk);
+        Mat6 EK, EC;
+        EK.leftCols<3>().noalias() = Dij.middleCols<3>(3) * skew(lof_[bj].w_GL_G);
+        EK.leftCols<3>() += Dij.middleCols<3>(0);
+        EK.rightCols<3>() = Dij.middleCols<3>(6);
+        EC.leftCols<3>() = Dij.middleCols<3>(3);
+        EC.rightCols<3>() = Dij.middleCols<3>(9);
+        Mat6 LK, LC;
+        for (int a = 0; a < 2; ++a)
+          for (int c = 0; c < 2; ++c) {
+            LK.block<3, 3>(3 * a, 3 * c).noalias() =
+                Ri.transpose() * EK.block<3, 3>(3 * a, 3 * c) * Rj;
+            LC.block<3, 3>(3 * a, 3 * c).noalias() =
+                Ri.transpose() * EC.block<3, 3>(3 * a, 3 * c) * Rj;
+          }
+        PairWork& pw = pairs_[pair_index_[bi * nb + bj]];
+        const auto Bj = bstack_[bj].middleRows<6>(mrow_[ids[j]]);
+        pw.YK.middleRows<6>(mrow_[ids[i]]).noalias() += LK * Bj;
+        pw.YC.middleRows<6>(mrow_[ids[i]]).noalias() += LC * Bj;
       }
     }
+  }
+  // f = ... - Q  =>  K -= [Bu; Bt]_i^T Y
+  for (auto& pw : pairs_) {
+    pw.blk.noalias() = -bstack_[pw.bi].transpose() * pw.YK;
+    add_block(K.valuePtr(), pw.bi, pw.bj, pw.blk);
+    pw.blk.noalias() = -bstack_[pw.bi].transpose() * pw.YC;
+    add_block(C.valuePtr(), pw.bi, pw.bj, pw.blk);
   }
   if (rank_ > 0) {
     apply_inverse_mass(K);

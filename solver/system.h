@@ -95,11 +95,16 @@ class System : public Problem {
     Mat KW, G;
     Mat3 W, Om;  // frame matrices KW, G were last built for
     bool built = false;
+    bool frame_free = false;  // KW = G = 0 (the products are skipped)
   };
   void update_lof(double t);
   void force_impl(double t, const double* q, const double* v, double* f);
   /// Subtracts the generalised loads Lm^T (F, M) of marker `id` from f.
   void apply_load(int id, const Vec3& F, const Vec3& M, double* f) const;
+  /// Adds (F, M) of marker `id` (G components) to its body's load buffer;
+  /// flush_loads() subtracts all of them from f with one product per body.
+  void accumulate_load(int id, const Vec3& F, const Vec3& M);
+  void flush_loads(double* f);
   /// Inertial elements: f_0 -> M^-1 f_0; leaves their ElementWork::motion at the
   /// solved accelerations and U_, W_, lu_ for apply_inverse_mass().
   void solve_inertia(double t, double* f);
@@ -145,7 +150,21 @@ class System : public Problem {
   std::vector<MarkerMotion> motion_;
   std::vector<ElementWork> ework_;
   std::vector<BodyWork> bwork_;
-  std::vector<Mat> Lm_, Pq_, Pv_;      // per marker (G components): 6 x n, 12 x n, 12 x n
+  std::vector<Mat> Lm_, Pq_, Pv_;  // per marker (G components): 6 x n, 12 x n, 12 x n
+  // Per body: the maps [Bu; Bt] of all its markers stacked (6 rows per marker),
+  // their products with q_b, v_b, and the marker loads in L components, so that
+  // the markers cost one matrix-vector product per body and direction.
+  std::vector<Mat> bstack_;
+  std::vector<Vec> bq_, bv_, bload_;
+  std::vector<int> mrow_;  // per marker: first row in its body's stack (-1: ground)
+  // Jacobian: per body pair an element couples, Y = sum E_ij [Bu; Bt]_j over the
+  // marker pairs (6 rows per marker of bi), then K_ij -= [Bu; Bt]_i^T Y.
+  struct PairWork {
+    int bi = 0, bj = 0;
+    Mat YK, YC, blk;
+  };
+  std::vector<PairWork> pairs_;
+  std::vector<int> pair_index_;        // [bi * nb + bj] -> index in pairs_, -1 if none
   std::vector<double> buf_a_, buf_b_;  // scratch for element blocks
   // block_start_[bi * nb + bj][c]: value index of the first row of body bi in
   // column offset(bj) + c of the pattern (-1 if the block is absent).

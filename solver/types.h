@@ -12,6 +12,7 @@ namespace evas {
 using Vec = Eigen::VectorXd;
 using Mat = Eigen::MatrixXd;
 using Vec6 = Eigen::Matrix<double, 6, 1>;
+using Mat6 = Eigen::Matrix<double, 6, 6>;
 using Vec3 = Eigen::Vector3d;
 using Mat3 = Eigen::Matrix3d;
 using Mat3X = Eigen::Matrix<double, 3, Eigen::Dynamic>;

@@ -288,35 +288,8 @@ TEST(IdaDae, UnconstrainedProblemUnchanged) {
 }
 
 // A mass matrix without constraints runs through the DAE residual
-// [q' - v; M v' + f]: the oscillators with every equation multiplied by a
-// mass (M = diag(m_i), f_i = m_i (2 zeta w v + w^2 q - F cos W t)) have the
-// same closed-form solution (sdof_problem.h).
-class MassSdof : public test::SdofProblem {
- public:
-  explicit MassSdof(std::vector<test::Oscillator> osc) : SdofProblem(std::move(osc)) {
-    mass_ = jacobian_pattern();
-  }
-  bool has_mass() const override { return true; }
-  const SpMat& mass_pattern() const override { return mass_; }
-  void mass(double, const double*, SpMat& M) override {
-    for (int i = 0; i < size(); ++i) M.valuePtr()[i] = weight(i);  // diagonal pattern
-  }
-  void force(double t, const double* q, const double* v, double* f) override {
-    SdofProblem::force(t, q, v, f);
-    for (int i = 0; i < size(); ++i) f[i] *= weight(i);
-  }
-  void force_jacobian(double t, const double* q, const double* v, SpMat& K, SpMat& C) override {
-    SdofProblem::force_jacobian(t, q, v, K, C);
-    for (int i = 0; i < size(); ++i) {
-      K.valuePtr()[i] *= weight(i);
-      C.valuePtr()[i] *= weight(i);
-    }
-  }
-
- private:
-  static double weight(int i) { return 0.5 + 2.0 * i; }
-  SpMat mass_;
-};
+// [q' - v; M v' + f] (test::MassSdof, sdof_problem.h).
+using test::MassSdof;
 
 TEST(IdaDae, MassMatrixWithoutConstraints) {
   MassSdof p(test::oscillators());

@@ -164,6 +164,7 @@ TEST(SdofLinearAcceleration, ThrowsWhenFixedPointCannotBalance) {
 struct AdaptiveCase {
   std::string label;
   std::string name, linear_solver, method;
+  int jacobian_age = 0;
 };
 
 void PrintTo(const AdaptiveCase& c, std::ostream* os) { *os << c.label; }
@@ -181,6 +182,7 @@ TEST_P(SdofAdaptiveAccuracy, ErrorFollowsTolerance) {
     s.name = c.name;
     s.linear_solver = c.linear_solver;
     s.method = c.method;
+    s.jacobian_age = c.jacobian_age;
     s.rtol = rtols[k];
     s.atol = 1e-2 * rtols[k];
     SdofProblem p(oscillators());
@@ -199,18 +201,22 @@ TEST_P(SdofAdaptiveAccuracy, ErrorFollowsTolerance) {
   for (int k = 0; k < 3; ++k) EXPECT_LT(e[k], 5 * rtols[k]) << "rtol " << rtols[k];
 }
 
-INSTANTIATE_TEST_SUITE_P(All, SdofAdaptiveAccuracy,
-                         ::testing::Values(AdaptiveCase{"ida klu", "ida", "klu", "bdf"},
-                                           AdaptiveCase{"ida dense", "ida", "dense", "bdf"},
-                                           AdaptiveCase{"cvode bdf klu", "cvode", "klu", "bdf"},
-                                           AdaptiveCase{"cvode bdf dense", "cvode", "dense", "bdf"},
-                                           AdaptiveCase{"cvode adams", "cvode", "klu", "adams"}),
-                         [](const ::testing::TestParamInfo<AdaptiveCase>& info) {
-                           std::string n = info.param.label;
-                           for (char& ch : n)
-                             if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
-                           return n;
-                         });
+INSTANTIATE_TEST_SUITE_P(
+    All, SdofAdaptiveAccuracy,
+    ::testing::Values(AdaptiveCase{"ida klu", "ida", "klu", "bdf"},
+                      AdaptiveCase{"ida dense", "ida", "dense", "bdf"},
+                      AdaptiveCase{"cvode bdf klu", "cvode", "klu", "bdf"},
+                      AdaptiveCase{"cvode bdf dense", "cvode", "dense", "bdf"},
+                      AdaptiveCase{"cvode adams", "cvode", "klu", "adams"},
+                      AdaptiveCase{"ida second-order", "ida", "second-order", "bdf"},
+                      AdaptiveCase{"ida second-order reuse", "ida", "second-order", "bdf", 20},
+                      AdaptiveCase{"cvode bdf second-order", "cvode", "second-order", "bdf"}),
+    [](const ::testing::TestParamInfo<AdaptiveCase>& info) {
+      std::string n = info.param.label;
+      for (char& ch : n)
+        if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
+      return n;
+    });
 
 // ---------------------------------------------------------------- stops
 
@@ -264,6 +270,8 @@ INSTANTIATE_TEST_SUITE_P(
                       StopCase{"ida dense", settings("ida", "dense"), 1e-6},
                       StopCase{"cvode bdf klu", settings("cvode"), 1e-6},
                       StopCase{"cvode bdf dense", settings("cvode", "dense"), 1e-6},
+                      StopCase{"ida second-order", settings("ida", "second-order"), 1e-6},
+                      StopCase{"cvode bdf second-order", settings("cvode", "second-order"), 1e-6},
                       StopCase{"cvode adams", settings("cvode", "klu", "adams"), 1e-6},
                       StopCase{"generalized-alpha rho=0.0",
                                settings("generalized-alpha", "klu", "bdf", 0.0), 1e-3},

@@ -8,12 +8,22 @@
 #include <new>
 
 #include "elements/spring_damper.h"
+#include "integrators/second_order_ls.h"
 #include "random_body.h"
 #include "solver/first_order.h"
 #include "solver/system.h"
 
 namespace {
 std::atomic<long> g_news{0};
+std::atomic<long> g_mallocs{0};
+}  // namespace
+
+// Eigen allocates with malloc, not operator new: count malloc too, by
+// interposing it on glibc's own (__libc_malloc) in this test executable.
+extern "C" void* __libc_malloc(std::size_t);
+extern "C" void* malloc(std::size_t n) {
+  ++g_mallocs;
+  return __libc_malloc(n);
 }
 
 // The replacement operators pair malloc with free; GCC cannot see that pairing.
@@ -61,6 +71,7 @@ TEST(NoAllocation, ResidualAndJacobianAfterWarmUp) {
   fo.rhs(0.1, y.data(), F.data());
   fo.rhs_jacobian(0.1, y.data(), Je);
   const long before = g_news.load();
+  const long mallocs = g_mallocs.load();
   for (int k = 0; k < 10; ++k) {
     const double t = 0.2 + 0.01 * k;
     sys.force(t, q.data(), v.data(), f.data());
@@ -71,4 +82,33 @@ TEST(NoAllocation, ResidualAndJacobianAfterWarmUp) {
     fo.rhs_jacobian(t, y.data(), Je);
   }
   EXPECT_EQ(g_news.load() - before, 0) << "heap allocations in residual/Jacobian evaluations";
+  EXPECT_EQ(g_mallocs.load() - mallocs, 0) << "mallocs in residual/Jacobian evaluations";
+}
+
+// The second-order solver's factorization and solve, dense (n <= 200) and KLU
+// (above), after the first factorization.
+TEST(NoAllocation, SecondOrderSolverAfterWarmUp) {
+  for (int n : {60, 300}) {
+    std::vector<Triplet> trip;
+    for (int c = 0; c < n; ++c)
+      for (int r = std::max(0, c - 2); r <= std::min(n - 1, c + 2); ++r)
+        trip.emplace_back(r, c, r == c ? 1e4 : 1.0);
+    SpMat P(n, n);
+    P.setFromTriplets(trip.begin(), trip.end());
+    SecondOrderSolver so(P);
+    so.K() = P;
+    so.C() = P * 1e-3;
+    so.set_coefficients(1e3, -1.0, 1.0, 1e3, 1.0);
+    Vec r = Vec::Ones(2 * n);
+    ASSERT_TRUE(so.factor());
+    so.solve(r.data(), r.data());
+    const long news = g_news.load(), mallocs = g_mallocs.load();
+    for (int k = 0; k < 5; ++k) {
+      so.set_coefficients(1e3 + k, -1.0, 1.0, 1e3 + k, 1.0);
+      ASSERT_TRUE(so.factor());
+      so.solve(r.data(), r.data());
+    }
+    EXPECT_EQ(g_news.load() - news, 0) << "n = " << n;
+    EXPECT_EQ(g_mallocs.load() - mallocs, 0) << "n = " << n;
+  }
 }

@@ -25,6 +25,7 @@
 #include <string>
 #include <vector>
 
+#include "integrators/second_order_ls.h"
 #include "io/scene.h"
 #include "solver/first_order.h"
 #include "solver/system.h"
@@ -68,7 +69,10 @@ inline double baseline_us_per_step(const std::string& label, double rtol) {
 }
 
 struct UnitCosts {
-  double residual = 0, jacobian = 0, factor = 0, refactor = 0, solve = 0;  // [s]
+  double residual = 0, jacobian = 0;           // System::force, System::force_jacobian [s]
+  double assemble = 0;                         // the 2n x 2n first-order matrix from K, C [s]
+  double factor = 0, refactor = 0, solve = 0;  // KLU on the 2n x 2n matrix [s]
+  double so_factor = 0, so_solve = 0;          // second-order solver (n x n) [s]
 };
 
 template <class F>
@@ -95,10 +99,12 @@ inline UnitCosts unit_costs(const study::SceneSource& src) {
   y << q, v;
   form.rhs(0.0, y.data(), yd.data());
   SpMat J = form.residual_pattern();
+  SpMat K = sys.jacobian_pattern(), C = K;
   const double cj = 2e5;  // 1/h at the engine's typical step of 5 us
   UnitCosts u;
   u.residual = per_call([&] { sys.force(0.0, q.data(), v.data(), f.data()); }, 2000);
-  u.jacobian = per_call([&] { form.residual_jacobian(0.0, y.data(), cj, J); }, 300);
+  u.jacobian = per_call([&] { sys.force_jacobian(0.0, q.data(), v.data(), K, C); }, 300);
+  u.assemble = per_call([&] { form.residual_jacobian(0.0, y.data(), cj, J); }, 300) - u.jacobian;
   klu_common common;
   klu_defaults(&common);
   int* Ap = J.outerIndexPtr();
@@ -117,6 +123,11 @@ inline UnitCosts unit_costs(const study::SceneSource& src) {
   u.solve = per_call([&] { klu_solve(sym, num, 2 * n, 1, b.data(), &common); }, 3000);
   klu_free_numeric(&num, &common);
   klu_free_symbolic(&sym, &common);
+  SecondOrderSolver so(sys.jacobian_pattern());
+  sys.force_jacobian(0.0, q.data(), v.data(), so.K(), so.C());
+  so.set_coefficients(cj, -1.0, 1.0, cj, 1.0);
+  u.so_factor = per_call([&] { so.factor(); }, 300);
+  u.so_solve = per_call([&] { so.solve(b.data(), b.data()); }, 3000);
   return u;
 }
 
@@ -133,17 +144,38 @@ inline double bearing_error(const study::RunData& d, const study::RunData& ref, 
   return peak > 0 ? diff / peak : std::nan("");
 }
 
+// The runs of the table: today's method (KLU on the 2n x 2n matrix, a Jacobian
+// at every factorization) and the second-order solver with Jacobian reuse, at
+// the two tolerances of the issue, and the cheapest settings found whose error
+// stays below 1e-3 (docs/performance.md, "Settings").
+struct EngineRun {
+  std::string solver;
+  double rtol, atol;
+};
+
+inline std::vector<EngineRun> engine_runs() {
+  return {{"klu", 1e-3, 1e-7},
+          {"klu", 1e-5, 1e-9},
+          {"second-order", 1e-3, 1e-7},
+          {"second-order", 1e-5, 1e-9},
+          {"second-order", 1e-4, 1e-8}};
+}
+
 inline std::string engine_table(const std::string& path) {
-  std::ostringstream os, prof;
-  os << "| case | rtol | real-time factor | wall [s] | steps | residuals | Jacobians | "
-        "factorizations | rejected steps | Newton failures | us per step | us per step / "
-        "2026-11-24 | error |\n"
-        "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
-  prof << "| case | rtol | residuals | Jacobians | factorizations | solves | rest (IDA, "
-          "outputs) |\n|---|---:|---:|---:|---:|---:|---:|\n";
+  std::ostringstream os, prof, side;
+  os << "| case | linear solver | rtol | atol | real-time factor | wall [s] | steps | residuals | "
+        "Jacobians | factorizations | rejected steps | Newton failures | us per step | us per "
+        "step / 2026-11-24 | error |\n"
+        "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+  prof << "| case | linear solver | rtol | residuals | Jacobians | factorizations | solves | rest "
+          "(IDA, outputs) |\n|---|---|---:|---:|---:|---:|---:|---:|\n";
+  side << "| case | rtol | us per step, KLU | us per step, second-order | KLU / second-order | "
+          "2026-11-24 / second-order |\n|---|---:|---:|---:|---:|---:|\n";
   std::ostringstream units;
-  units << "| case | residual [us] | Jacobian [us] | KLU factorization [us] | KLU "
-           "refactorization [us] | KLU solve [us] |\n|---|---:|---:|---:|---:|---:|\n";
+  units << "| case | residual [us] | Jacobian K, C [us] | 2n matrix from K, C [us] | KLU "
+           "factorization 2n [us] | KLU refactorization 2n [us] | KLU solve 2n [us] | "
+           "second-order factorization n [us] | second-order solve n [us] |\n"
+           "|---|---:|---:|---:|---:|---:|---:|---:|---:|\n";
   for (const EngineCase& c : engine_cases(path)) {
     const study::SceneInfo info = study::probe_scene(c.src);
     std::vector<int> channels;
@@ -155,6 +187,7 @@ inline std::string engine_table(const std::string& path) {
     }
     IntegratorSettings s = info.integrator;
     s.name = "ida";
+    s.linear_solver = "klu";
     s.rtol = 1e-9;
     s.atol = 1e-12;
     const study::RunData ref = study::run_case(c.src, s, channels);
@@ -163,43 +196,61 @@ inline std::string engine_table(const std::string& path) {
               << " s)\n";
     const UnitCosts u = unit_costs(c.src);
     units << "| " << c.label << std::fixed << std::setprecision(1) << " | " << u.residual * 1e6
-          << " | " << u.jacobian * 1e6 << " | " << u.factor * 1e6 << " | " << u.refactor * 1e6
-          << " | " << u.solve * 1e6 << " |\n";
-    for (double rtol : {1e-3, 1e-5}) {
-      s.rtol = rtol;
-      s.atol = rtol * 1e-4;
+          << " | " << u.jacobian * 1e6 << " | " << u.assemble * 1e6 << " | " << u.factor * 1e6
+          << " | " << u.refactor * 1e6 << " | " << u.solve * 1e6 << " | " << u.so_factor * 1e6
+          << " | " << u.so_solve * 1e6 << " |\n";
+    std::vector<double> us_klu, us_so;
+    for (const EngineRun& r : engine_runs()) {
+      s.linear_solver = r.solver;
+      s.rtol = r.rtol;
+      s.atol = r.atol;
+      const bool so = r.solver == "second-order";
       const study::RunData d = study::run_case_repeated(c.src, s, channels, 2);
       if (d.status != "completed") throw RunError(c.label + ": " + d.message);
       const IntegratorStats& st = d.stats;
       const double span = info.t_end - info.t_start;
-      os << "| " << c.label << " | " << std::scientific << std::setprecision(0) << rtol << " | "
-         << std::fixed << std::setprecision(1) << d.wall / span << " | " << std::setprecision(2)
-         << d.wall << " | " << st.steps << " | " << st.residual_evals << " | " << st.jacobian_evals
-         << " | " << st.linear_setups << " | " << st.error_test_failures << " | "
-         << st.convergence_failures << " | " << std::setprecision(1)
-         << d.wall / static_cast<double>(st.steps) * 1e6 << " | " << std::setprecision(2)
-         << d.wall / static_cast<double>(st.steps) * 1e6 / baseline_us_per_step(c.label, rtol)
-         << " | " << std::scientific << std::setprecision(1) << bearing_error(d, ref, info.t_end)
-         << " |\n";
+      const double us = d.wall / static_cast<double>(st.steps) * 1e6;
+      if (r.rtol == 1e-3 || r.rtol == 1e-5) (so ? us_so : us_klu).push_back(us);
+      os << "| " << c.label << " | " << r.solver << " | " << std::scientific << std::setprecision(0)
+         << r.rtol << " | " << r.atol << " | " << std::fixed << std::setprecision(2)
+         << d.wall / span << " | " << d.wall << " | " << st.steps << " | " << st.residual_evals
+         << " | " << st.jacobian_evals << " | " << st.linear_setups << " | "
+         << st.error_test_failures << " | " << st.convergence_failures << " | "
+         << std::setprecision(1) << us << " | " << std::setprecision(2)
+         << us / baseline_us_per_step(c.label, r.rtol) << " | " << std::scientific
+         << std::setprecision(1) << bearing_error(d, ref, info.t_end) << " |\n";
       auto share = [&](double seconds) {
         std::ostringstream o;
         o << std::fixed << std::setprecision(0) << 100.0 * seconds / d.wall << " %";
         return o.str();
       };
-      const double tr = st.residual_evals * u.residual, tj = st.jacobian_evals * u.jacobian,
-                   tf = st.linear_setups * u.factor, ts = st.nonlinear_iterations * u.solve;
-      prof << "| " << c.label << " | " << std::scientific << std::setprecision(0) << rtol << " | "
-           << share(tr) << " | " << share(tj) << " | " << share(tf) << " | " << share(ts) << " | "
-           << share(d.wall - tr - tj - tf - ts) << " |\n";
-      std::cerr << c.label << " rtol " << rtol << " done\n";
+      const double tr = st.residual_evals * u.residual;
+      const double tj = st.jacobian_evals * (u.jacobian + (so ? 0.0 : u.assemble));
+      const double tf = st.linear_setups * (so ? u.so_factor : u.factor);
+      const double ts = st.nonlinear_iterations * (so ? u.so_solve : u.solve);
+      prof << "| " << c.label << " | " << r.solver << " | " << std::scientific
+           << std::setprecision(0) << r.rtol << " | " << share(tr) << " | " << share(tj) << " | "
+           << share(tf) << " | " << share(ts) << " | " << share(d.wall - tr - tj - tf - ts)
+           << " |\n";
+      std::cerr << c.label << " " << r.solver << " rtol " << r.rtol << " done\n";
+    }
+    for (std::size_t k = 0; k < us_so.size() && k < us_klu.size(); ++k) {
+      const double rtol = k == 0 ? 1e-3 : 1e-5;
+      side << "| " << c.label << " | " << std::scientific << std::setprecision(0) << rtol << " | "
+           << std::fixed << std::setprecision(1) << us_klu[k] << " | " << us_so[k] << " | "
+           << std::setprecision(2) << us_klu[k] / us_so[k] << " | "
+           << baseline_us_per_step(c.label, rtol) / us_so[k] << " |\n";
     }
   }
   return os.str() +
-         "\nUnit costs on the engine's matrices (initial state, cj = 2e5; the "
-         "iteration matrix is 2n x 2n = 144 x 144):\n\n" +
+         "\nSide by side in this run (µs per step; KLU = today's method on today's model code; "
+         "2026-11-24 = the recorded figure of the code before this work, same machine):\n\n" +
+         side.str() +
+         "\nUnit costs on the engine's matrices (initial state, cj = 2e5; n = 72, the "
+         "first-order matrix is 2n x 2n = 144 x 144):\n\n" +
          units.str() +
-         "\nProfile: counts x unit costs as a share of the wall time (factorizations "
-         "counted as full KLU factorizations, an upper bound when IDA's KLU module "
+         "\nProfile: counts x unit costs as a share of the wall time (KLU factorizations "
+         "counted as full factorizations, an upper bound when IDA's KLU module "
          "refactorizes):\n\n" +
          prof.str();
 }

@@ -4,6 +4,8 @@
 //  2. IDA with KLU against IDA with dense LU as the number of modes grows, on a
 //     chain of flexible bodies coupled by spring-dampers.
 //  3. The paper's engine, Case 1 and Case 2 (validation/bench_engine.h).
+//  4. Scaling of the engine's cost per step with modes and elements
+//     (validation/bench_scaling.h).
 // usage: evas_bench [OUT.md] [ENGINE.yaml] (default validation/engine/engine.yaml,
 // relative to the working directory: `make bench` runs it from the source tree)
 // Times are the minimum over repeats after a warm-up; ratios measured in one run
@@ -17,6 +19,7 @@
 
 #include "../tests/random_body.h"
 #include "bench_engine.h"
+#include "bench_scaling.h"
 #include "elements/spring_damper.h"
 #include "integrators/integrator.h"
 #include "solver/invariants.h"
@@ -141,13 +144,15 @@ std::unique_ptr<Model> chain(int nb, int n_el) {
 std::string klu_table() {
   std::ostringstream os;
   os << "| bodies | modes per body | states (2n) | Jacobian nonzeros | dense LU [s] | KLU [s] | "
-        "dense / KLU | steps (dense, KLU) |\n|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+        "second-order [s] | dense / KLU | second-order / KLU | steps (dense, KLU, second-order) "
+        "|\n|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
   const int nb = 8;
+  const char* solvers[3] = {"dense", "klu", "second-order"};
   for (int n_el : {4, 14, 34, 74}) {
-    double times[2];
-    long steps[2];
+    double times[3];
+    long steps[3];
     long nnz = 0;
-    for (int s = 0; s < 2; ++s) {
+    for (int s = 0; s < 3; ++s) {
       auto model = chain(nb, n_el);
       System sys(*model);
       nnz = sys.jacobian_pattern().nonZeros();
@@ -155,7 +160,7 @@ std::string klu_table() {
       set.name = "ida";
       set.rtol = 1e-6;
       set.atol = 1e-9;
-      set.linear_solver = s == 0 ? "dense" : "klu";
+      set.linear_solver = solvers[s];
       std::vector<double> outs;
       for (int k = 1; k <= 20; ++k) outs.push_back(0.005 * k);
       times[s] = min_time(
@@ -171,9 +176,9 @@ std::string klu_table() {
     }
     const int states = 2 * nb * (n_el + 6);
     os << "| " << nb << " | " << n_el + 6 << " | " << states << " | " << 2 * nnz + states << " | "
-       << std::fixed << std::setprecision(3) << times[0] << " | " << times[1] << " | "
-       << std::setprecision(2) << times[0] / times[1] << " | " << steps[0] << ", " << steps[1]
-       << " |\n";
+       << std::fixed << std::setprecision(3) << times[0] << " | " << times[1] << " | " << times[2]
+       << " | " << std::setprecision(2) << times[0] / times[1] << " | " << times[2] / times[1]
+       << " | " << steps[0] << ", " << steps[1] << ", " << steps[2] << " |\n";
     std::cerr << "ida n=" << n_el + 6 << " done\n";
   }
   return os.str();
@@ -195,11 +200,13 @@ int main(int argc, char** argv) {
          "paper's sums over nodes, costs O(N n). Both give the same vector (checked in the "
          "run, relative difference < 1e-9, and in `tests/test_invariants.cpp`).\n\n"
       << residual_table() << "\n"
-      << "## IDA: KLU against dense LU as the number of modes grows\n\n"
+      << "## IDA: dense LU, KLU and the second-order solver as the number of modes grows\n\n"
       << "A chain of 8 flexible bodies (6 rigid + elastic modes each), the first spinning at "
          "50 rad/s, neighbours coupled by spring-dampers, 0.1 s simulated, rtol 1e-6, atol "
          "1e-9, analytic Jacobian. The iteration matrix has dense diagonal body blocks and "
-         "coupling blocks only between neighbours.\n\n"
+         "coupling blocks only between neighbours. dense and KLU factorize the 2n x 2n "
+         "first-order matrix; second-order the n x n matrix K + cj C + cj^2 I (dense LU up to "
+         "n = 200, KLU above; Jacobians reused over up to 10 steps).\n\n"
       << klu_table() << "\n"
       << "## The paper's engine: cost, parts and accuracy\n\n"
       << "`validation/engine/engine.yaml` (72 modal coordinates, 14 elements, 0.24 s = six "
@@ -210,7 +217,12 @@ int main(int argc, char** argv) {
          "difference of the ten main-bearing load channels (main1..5 fx, fy) to a reference "
          "run (IDA, rtol 1e-9, atol 1e-12), divided by the largest reference load among "
          "them.\n\n"
-      << bench::engine_table(engine) << "\n";
+      << bench::engine_table(engine) << "\n"
+      << "## Scaling of the engine's cost per step\n\n"
+      << "IDA with the second-order solver, rtol 1e-5, atol 1e-9, the first 0.06 s of Case 1; "
+         "wall time of init + integrate (minimum of 2 runs) per step; peak memory of the same "
+         "run as an `evas run` process (its maximum resident set, outputs included).\n\n"
+      << bench::scaling_table(engine, EVAS_PROGRAM) << "\n";
   std::cout << doc.str();
   if (!out.empty()) {
     std::ofstream f(out);

@@ -1,0 +1,147 @@
+// The second-order linear solver (integrators/second_order_ls.h): the reduced
+// n x n solve against a dense LU of the full 2n x 2n iteration matrix, for
+// IDA's and CVODE's coefficients, on the dense and the KLU path; Jacobian
+// reuse in IDA; refusal of problems it cannot take.
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "integrators/integrator.h"
+#include "integrators/second_order_ls.h"
+#include "sdof_problem.h"
+
+using namespace evas;
+
+namespace {
+
+// A pattern with the full diagonal and `band` off-diagonals on each side.
+SpMat band_pattern(int n, int band) {
+  std::vector<Triplet> trip;
+  for (int c = 0; c < n; ++c)
+    for (int r = std::max(0, c - band); r <= std::min(n - 1, c + band); ++r)
+      trip.emplace_back(r, c, 0.0);
+  SpMat P(n, n);
+  P.setFromTriplets(trip.begin(), trip.end());
+  P.makeCompressed();
+  return P;
+}
+
+// max |x - x_ref| / max |x_ref| for A(a..e) x = r solved both ways.
+double reduced_vs_full(SecondOrderSolver& so, double a, double b, double c, double d, double e,
+                       unsigned seed) {
+  const int n = so.size();
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  // a stiff, non-symmetric K (1e4 .. 1e8 on the diagonal) and a damping C
+  for (int k = 0; k < so.K().nonZeros(); ++k) {
+    so.K().valuePtr()[k] = 1e3 * u(rng);
+    so.C().valuePtr()[k] = 10.0 * u(rng);
+  }
+  for (int i = 0; i < n; ++i) {
+    so.K().coeffRef(i, i) = std::pow(10.0, 4.0 + 4.0 * i / n);
+    so.C().coeffRef(i, i) = 50.0;
+  }
+  Mat A = Mat::Zero(2 * n, 2 * n);
+  A.topLeftCorner(n, n) = a * Mat::Identity(n, n);
+  A.topRightCorner(n, n) = b * Mat::Identity(n, n);
+  A.bottomLeftCorner(n, n) = c * Mat(so.K());
+  A.bottomRightCorner(n, n) = d * Mat::Identity(n, n) + e * Mat(so.C());
+  Vec r(2 * n);
+  for (int i = 0; i < 2 * n; ++i) r[i] = u(rng);
+  const Vec ref = A.fullPivLu().solve(r);
+  so.set_coefficients(a, b, c, d, e);
+  EXPECT_TRUE(so.factor());
+  Vec x = r;
+  so.solve(x.data(), x.data());  // in place, as SUNDIALS calls it
+  return (x - ref).cwiseAbs().maxCoeff() / ref.cwiseAbs().maxCoeff();
+}
+
+}  // namespace
+
+// Both coefficient sets (IDA at cj, CVODE at gamma) against the full solve.
+void expect_matches_full(SecondOrderSolver& so, double cj, double gamma, unsigned seed,
+                         const char* what) {
+  const double ida = reduced_vs_full(so, cj, -1.0, 1.0, cj, 1.0, seed);
+  const double cvode = reduced_vs_full(so, 1.0, -gamma, gamma, 1.0, gamma, seed + 1);
+  std::cout << what << ": IDA " << ida << ", CVODE " << cvode << "\n";
+  EXPECT_LT(ida, 1e-10);
+  EXPECT_LT(cvode, 1e-10);
+}
+
+TEST(SecondOrderSolver, DensePathMatchesFullSolve) {
+  SecondOrderSolver so(band_pattern(24, 30));  // full 24 x 24
+  EXPECT_TRUE(so.dense());
+  expect_matches_full(so, 2e5, 1e-5, 1, "dense");
+}
+
+TEST(SecondOrderSolver, KluPathMatchesFullSolve) {
+  SecondOrderSolver so(band_pattern(400, 2));  // n > 200: KLU
+  EXPECT_FALSE(so.dense());
+  expect_matches_full(so, 3e4, 2e-5, 3, "KLU");
+}
+
+TEST(SecondOrderSolver, SingularMatrixIsAFailedFactorization) {
+  SecondOrderSolver so(band_pattern(5, 5));
+  // K = -cj^2 I, C = 0: K + cj C + cj^2 I = 0
+  so.C().coeffs().setZero();
+  so.K().coeffs().setZero();
+  for (int i = 0; i < 5; ++i) so.K().coeffRef(i, i) = -4.0;
+  so.set_coefficients(2.0, -1.0, 1.0, 2.0, 1.0);
+  EXPECT_FALSE(so.factor());
+}
+
+// IDA: with jacobian_age = 0 every factorization evaluates K and C; with
+// reuse, fewer evaluations than factorizations, and the closed-form solution
+// (S. S. Rao, Mechanical Vibrations: damped, forced oscillators) is still
+// met to the tolerance.
+TEST(SecondOrderSolver, IdaJacobianReuse) {
+  for (int age : {0, 20}) {
+    test::SdofProblem p(test::oscillators());
+    IntegratorSettings s;
+    s.name = "ida";
+    s.linear_solver = "second-order";
+    s.jacobian_age = age;
+    s.rtol = 1e-8;
+    s.atol = 1e-10;
+    auto integ = make_integrator("ida");
+    Vec q0, v0;
+    p.initial_state(q0, v0);
+    integ->init(p, 0.0, q0, v0, s);
+    double err = 0.0;
+    std::vector<double> outputs;
+    for (int k = 1; k <= 20; ++k) outputs.push_back(0.1 * k);
+    integrate(*integ, p, 0.0, outputs, [&](double t, const Vec& q, const Vec&) {
+      Vec qe, ve;
+      p.exact(t, qe, ve);
+      err = std::max(err, (q - qe).lpNorm<Eigen::Infinity>());
+    });
+    const IntegratorStats st = integ->stats();
+    std::cout << "jacobian_age " << age << ": " << st.jacobian_evals << " Jacobians, "
+              << st.linear_setups << " factorizations, " << st.steps << " steps, error " << err
+              << "\n";
+    EXPECT_EQ(st.jacobian_evals, p.counters.jac_evals);
+    if (age == 0)
+      EXPECT_EQ(st.jacobian_evals, st.linear_setups);
+    else
+      EXPECT_LT(st.jacobian_evals, st.linear_setups);
+    EXPECT_LT(err, 5e-8);
+  }
+}
+
+TEST(SecondOrderSolver, RefusesProblemsWithAMassMatrix) {
+  test::MassSdof p(test::oscillators());
+  IntegratorSettings s;
+  s.linear_solver = "second-order";
+  auto integ = make_integrator("ida");
+  Vec q, v;
+  p.initial_state(q, v);
+  try {
+    integ->init(p, 0.0, q, v, s);
+    FAIL() << "expected InputError";
+  } catch (const InputError& e) {
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find("second-order"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("mass matrix"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("use klu"), std::string::npos) << msg;
+  }
+}
