@@ -333,14 +333,19 @@ double JournalBearing::peak_pressure(const V2& e, const V2& ed, double om) const
     const double h = c - e.dot(u);
     return W.dot(u) / (h * h * h);
   };
-  // Coarse scan, then golden-section search in the best bracket.
+  // Coarse scan (the unit vector turned by dphi each point: one sine and
+  // cosine for the scan), then golden-section search in the best bracket.
   const int n = 128;
   const double dphi = M_PI / n;
+  const double cr = std::cos(dphi), sr = std::sin(dphi);
+  V2 u(std::cos(phiW - 0.5 * M_PI), std::sin(phiW - 0.5 * M_PI));
   int best = 0;
   double qbest = -1.0;
   for (int i = 0; i <= n; ++i) {
-    const double v = q(phiW - 0.5 * M_PI + i * dphi);
+    const double h = c - e.dot(u);
+    const double v = W.dot(u) / (h * h * h);
     if (v > qbest) qbest = v, best = i;
+    u = V2(cr * u.x() - sr * u.y(), sr * u.x() + cr * u.y());
   }
   double lo = phiW - 0.5 * M_PI + (best - 1) * dphi, hi = lo + 2.0 * dphi;
   const double g = 0.5 * (std::sqrt(5.0) - 1.0);

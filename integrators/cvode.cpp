@@ -107,6 +107,8 @@ class CvodeIntegrator final : public Integrator {
     }
     if (s.max_step > 0.0) check(CVodeSetMaxStep(mem_, s.max_step), "CVodeSetMaxStep");
     if (s.max_order > 0) check(CVodeSetMaxOrd(mem_, s.max_order), "CVodeSetMaxOrd");
+    if (s.newton_coefficient > 0.0)
+      check(CVodeSetNonlinConvCoef(mem_, s.newton_coefficient), "CVodeSetNonlinConvCoef");
     check(CVodeSetMaxNumSteps(mem_, s.max_steps), "CVodeSetMaxNumSteps");
     t_ = t0;
   }

@@ -135,6 +135,8 @@ class IdaIntegrator final : public Integrator {
     check(IDASetJacFn(mem_, &IdaIntegrator::jacobian_cb), "IDASetJacFn");
     if (s.max_step > 0.0) check(IDASetMaxStep(mem_, s.max_step), "IDASetMaxStep");
     if (s.max_order > 0) check(IDASetMaxOrd(mem_, std::min(s.max_order, 5)), "IDASetMaxOrd");
+    if (s.newton_coefficient > 0.0)
+      check(IDASetNonlinConvCoef(mem_, s.newton_coefficient), "IDASetNonlinConvCoef");
     check(IDASetMaxNumSteps(mem_, s.max_steps), "IDASetMaxNumSteps");
     t_ = t0;
     if (dae_) start_dae(t0);

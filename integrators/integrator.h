@@ -39,6 +39,9 @@ struct IntegratorSettings {
   int max_iterations = 50;     ///< fixed-point / Newton iterations per step
   long max_steps = 10000000;   ///< adaptive methods: steps per output interval
   int max_order = 0;           ///< ida, cvode: largest BDF/Adams order (0 = solver's)
+  /// ida, cvode: safety factor of the Newton convergence test (IDASetNonlinConvCoef,
+  /// CVodeSetNonlinConvCoef); 0 = the solver's (0.33 IDA, 0.1 CVODE)
+  double newton_coefficient = 0.0;
   /// generalized-alpha, linear-acceleration: "default" (fixed-point for
   /// linear-acceleration, effective-mass for generalized-alpha), "fixed-point",
   /// "anderson", "effective-mass" or "newton"

@@ -165,6 +165,10 @@ const std::vector<Entry>& table() {
              }),
       integer("max_order", "ida, cvode", "largest order, 0 = the solver's (5 BDF, 12 Adams)",
               &S::max_order, 0, 12),
+      number("newton_coefficient", "ida, cvode",
+             "safety factor of the Newton convergence test, 0 = the solver's (0.33 IDA, 0.1 "
+             "CVODE)",
+             &S::newton_coefficient, 0.0, 1.0, false),
       number("rho_inf", "generalized-alpha", "spectral radius at infinity", &S::rho_inf, 0.0, 1.0,
              false),
       integer("max_steps", "ida, cvode", "steps allowed per output interval", &S::max_steps, 1,

@@ -33,6 +33,14 @@ inline std::string flag_name(char* owned) {
   return p ? std::string(p.get()) : std::string("unknown flag");
 }
 
+/// Replaces the weighted norms, linear sums, scalings and linear combinations
+/// of a serial N_Vector (and of every clone the solver makes of it) by
+/// vectorized ones (integrators/fast_nvector.cpp): the library's serial loops
+/// sum in one chain, which the compiler may not reorder, and IDA and CVODE
+/// take several norms and combinations per step. Also turns on the fused
+/// vector operations (one call for IDA's and CVODE's linear combinations).
+void use_fast_norms(N_Vector v);
+
 /// One SUNContext per integrator instance.
 class Context {
  public:
@@ -59,6 +67,7 @@ class Vector {
     reset();
     v_ = N_VNew_Serial(n, ctx);
     if (!v_) throw RunError("N_VNew_Serial failed");
+    use_fast_norms(v_);
   }
   void reset() {
     if (v_) N_VDestroy(v_);

@@ -1,0 +1,85 @@
+// Vectorized weighted norms and linear combinations for serial N_Vectors (see
+// sundials_util.h).
+// Same definitions as the library's (SUNDIALS user guide, N_Vector
+// operations): WSqrSumLocal = sum (x_i w_i)^2, WrmsNorm = sqrt(WSqrSumLocal / n),
+// WrmsNormMask = the same over the components with id_i > 0. Eigen sums in
+// several independent partial sums (SIMD), so the last bits may differ from
+// the library's single running sum.
+#include <nvector/nvector_serial.h>
+
+#include <cmath>
+
+#include "integrators/sundials_util.h"
+#include "solver/types.h"
+
+namespace evas::sundials {
+namespace {
+
+Eigen::Map<const Vec> view(N_Vector v) {
+  return {NV_DATA_S(v), static_cast<Eigen::Index>(NV_LENGTH_S(v))};
+}
+
+realtype wsqrsum(N_Vector x, N_Vector w) { return view(x).cwiseProduct(view(w)).squaredNorm(); }
+
+realtype wrms(N_Vector x, N_Vector w) {
+  const auto n = NV_LENGTH_S(x);
+  return n > 0 ? std::sqrt(wsqrsum(x, w) / static_cast<realtype>(n)) : 0.0;
+}
+
+realtype wsqrsum_mask(N_Vector x, N_Vector w, N_Vector id) {
+  return (view(id).array() > 0.0).select(view(x).cwiseProduct(view(w)), 0.0).squaredNorm();
+}
+
+realtype wrms_mask(N_Vector x, N_Vector w, N_Vector id) {
+  const auto n = NV_LENGTH_S(x);
+  return n > 0 ? std::sqrt(wsqrsum_mask(x, w, id) / static_cast<realtype>(n)) : 0.0;
+}
+
+Eigen::Map<Vec> view_out(N_Vector v) {
+  return {NV_DATA_S(v), static_cast<Eigen::Index>(NV_LENGTH_S(v))};
+}
+
+// z = sum c_i X_i (z may be X[0], as the library allows; any other alias
+// takes the element-wise loop).
+int linear_combination(int nvec, realtype* c, N_Vector* X, N_Vector z) {
+  if (nvec < 1) return -1;
+  for (int i = 1; i < nvec; ++i)
+    if (X[i] == z) {
+      const auto n = NV_LENGTH_S(z);
+      for (sunindextype j = 0; j < n; ++j) {
+        realtype sum = 0.0;
+        for (int k = 0; k < nvec; ++k) sum += c[k] * NV_DATA_S(X[k])[j];
+        NV_DATA_S(z)[j] = sum;
+      }
+      return 0;
+    }
+  auto Z = view_out(z);
+  if (X[0] == z) {
+    if (c[0] != 1.0) Z *= c[0];
+  } else {
+    Z = c[0] * view(X[0]);
+  }
+  for (int i = 1; i < nvec; ++i) Z += c[i] * view(X[i]);
+  return 0;
+}
+
+void linear_sum(realtype a, N_Vector x, realtype b, N_Vector y, N_Vector z) {
+  view_out(z) = a * view(x) + b * view(y);  // element-wise: any alias is safe
+}
+
+void scale(realtype c, N_Vector x, N_Vector z) { view_out(z) = c * view(x); }
+
+}  // namespace
+
+void use_fast_norms(N_Vector v) {
+  N_VEnableFusedOps_Serial(v, SUNTRUE);
+  v->ops->nvwsqrsumlocal = wsqrsum;
+  v->ops->nvwrmsnorm = wrms;
+  v->ops->nvwsqrsummasklocal = wsqrsum_mask;
+  v->ops->nvwrmsnormmask = wrms_mask;
+  v->ops->nvlinearcombination = linear_combination;
+  v->ops->nvlinearsum = linear_sum;
+  v->ops->nvscale = scale;
+}
+
+}  // namespace evas::sundials
