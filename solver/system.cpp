@@ -56,6 +56,7 @@ System::System(Model& model) : model_(model) {
       bstack_[markers[m].body].middleRows(mrow_[m], 3) = markers[m].Bu;
       bstack_[markers[m].body].middleRows(mrow_[m] + 3, 3) = markers[m].Bt;
     }
+  bstack_rows_.assign(bstack_.begin(), bstack_.end());
 
   // Pattern: dense diagonal body blocks plus body-pair blocks of every element.
   std::vector<char> pair(static_cast<std::size_t>(nb) * nb, 0);
@@ -78,9 +79,10 @@ System::System(Model& model) : model_(model) {
           PairWork pw;
           pw.bi = bi;
           pw.bj = bj;
-          pw.YK = Mat::Zero(rows[bi], bodies[bj].n());
-          pw.YC = Mat::Zero(rows[bi], bodies[bj].n());
-          pw.blk = Mat::Zero(bodies[bi].n(), bodies[bj].n());
+          pw.Y = PairRowMat::Zero(rows[bi], 2 * bodies[bj].n());
+          pw.Yc = pw.Y;
+          pw.Bc = PairRowMat::Zero(rows[bi], bodies[bi].n());
+          pw.blk = Mat::Zero(bodies[bi].n(), 2 * bodies[bj].n());
           pairs_.push_back(std::move(pw));
         }
       }
@@ -440,8 +442,7 @@ void System::force_jacobian(double t, const double* q, const double* v, SpMat& K
   body_operator(t, K, C);
   const auto& markers = model_.markers();
   for (auto& pw : pairs_) {
-    pw.YK.setZero();
-    pw.YC.setZero();
+    pw.Y.setZero();
   }
   const int nb = static_cast<int>(model_.bodies().size());
   for (std::size_t e = 0; e < ework_.size(); ++e) {
@@ -483,17 +484,28 @@ void System::force_jacobian(double t, const double* q, const double* v, SpMat& K
           }
         PairWork& pw = pairs_[pair_index_[bi * nb + bj]];
         const auto Bj = bstack_[bj].middleRows<6>(mrow_[ids[j]]);
-        pw.YK.middleRows<6>(mrow_[ids[i]]).noalias() += LK * Bj;
-        pw.YC.middleRows<6>(mrow_[ids[i]]).noalias() += LC * Bj;
+        const Eigen::Index nj = Bj.cols();
+        pw.Y.block(mrow_[ids[i]], 0, 6, nj).noalias() += LK * Bj;
+        pw.Y.block(mrow_[ids[i]], nj, 6, nj).noalias() += LC * Bj;
       }
     }
   }
-  // f = ... - Q  =>  K -= [Bu; Bt]_i^T Y
+  // f = ... - Q  =>  [K C] -= [Bu; Bt]_i^T [YK YC], over the rows of Y that carry
+  // anything (a marker's moment rows stay zero when no element loads it with a
+  // moment: mounts, liners; the product then skips them).
   for (auto& pw : pairs_) {
-    pw.blk.noalias() = -bstack_[pw.bi].transpose() * pw.YK;
-    add_block(K.valuePtr(), pw.bi, pw.bj, pw.blk);
-    pw.blk.noalias() = -bstack_[pw.bi].transpose() * pw.YC;
-    add_block(C.valuePtr(), pw.bi, pw.bj, pw.blk);
+    const PairRowMat& B = bstack_rows_[pw.bi];
+    Eigen::Index m = 0;
+    for (Eigen::Index r = 0; r < pw.Y.rows(); ++r)
+      if (!pw.Y.row(r).isZero(0.0)) {
+        pw.Yc.row(m) = pw.Y.row(r);
+        pw.Bc.row(m) = B.row(r);
+        ++m;
+      }
+    pw.blk.noalias() = -pw.Bc.topRows(m).transpose() * pw.Yc.topRows(m);
+    const Eigen::Index nj = pw.Y.cols() / 2;
+    add_block(K.valuePtr(), pw.bi, pw.bj, pw.blk.leftCols(nj));
+    add_block(C.valuePtr(), pw.bi, pw.bj, pw.blk.rightCols(nj));
   }
   if (rank_ > 0) {
     apply_inverse_mass(K);

@@ -155,13 +155,17 @@ class System : public Problem {
   // their products with q_b, v_b, and the marker loads in L components, so that
   // the markers cost one matrix-vector product per body and direction.
   std::vector<Mat> bstack_;
+  using PairRowMat = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+  std::vector<PairRowMat> bstack_rows_;  // the same, row-major (row gathers in force_jacobian)
   std::vector<Vec> bq_, bv_, bload_;
   std::vector<int> mrow_;  // per marker: first row in its body's stack (-1: ground)
   // Jacobian: per body pair an element couples, Y = sum E_ij [Bu; Bt]_j over the
   // marker pairs (6 rows per marker of bi), then K_ij -= [Bu; Bt]_i^T Y.
   struct PairWork {
     int bi = 0, bj = 0;
-    Mat YK, YC, blk;
+    PairRowMat Y;       // [YK YC]: rows of the markers of bi, 2 n_bj columns
+    PairRowMat Yc, Bc;  // the non-zero rows of Y and the same rows of bi's stack
+    Mat blk;            // -[Bu; Bt]^T [YK YC]
   };
   std::vector<PairWork> pairs_;
   std::vector<int> pair_index_;        // [bi * nb + bj] -> index in pairs_, -1 if none
