@@ -285,6 +285,7 @@ int cmd_run(const std::vector<std::string>& args) {
   sum.t_end = scene.t_end;
   sum.t_reached = writer.rows_written() > 0 ? writer.last_time_written() : scene.t_start;
   sum.rows = writer.rows_written();
+  sum.peak_memory_mb = process_peak_memory_mb();
   sum.stats = stats;
   sum.channels = writer.channels();
   sum.channel_summary = writer.summary();

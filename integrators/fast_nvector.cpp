@@ -1,15 +1,15 @@
-// Vectorized weighted norms and linear combinations for serial N_Vectors (see
-// sundials_util.h).
+// Vectorized vector operations for serial N_Vectors (see fast_nvector.h).
 // Same definitions as the library's (SUNDIALS user guide, N_Vector
 // operations): WSqrSumLocal = sum (x_i w_i)^2, WrmsNorm = sqrt(WSqrSumLocal / n),
 // WrmsNormMask = the same over the components with id_i > 0. Eigen sums in
 // several independent partial sums (SIMD), so the last bits may differ from
 // the library's single running sum.
+#include "integrators/fast_nvector.h"
+
 #include <nvector/nvector_serial.h>
 
 #include <cmath>
 
-#include "integrators/sundials_util.h"
 #include "solver/types.h"
 
 namespace evas::sundials {
@@ -69,6 +69,20 @@ void linear_sum(realtype a, N_Vector x, realtype b, N_Vector y, N_Vector z) {
 
 void scale(realtype c, N_Vector x, N_Vector z) { view_out(z) = c * view(x); }
 
+void constant(realtype c, N_Vector z) { view_out(z).setConstant(c); }
+
+void absolute(N_Vector x, N_Vector z) { view_out(z) = view(x).cwiseAbs(); }
+
+void inverse(N_Vector x, N_Vector z) { view_out(z) = view(x).cwiseInverse(); }
+
+void add_constant(N_Vector x, realtype b, N_Vector z) { view_out(z) = view(x).array() + b; }
+
+// Z[i] = c[i] X[i] (Z[i] may be X[i])
+int scale_vector_array(int nvec, realtype* c, N_Vector* X, N_Vector* Z) {
+  for (int i = 0; i < nvec; ++i) view_out(Z[i]) = c[i] * view(X[i]);
+  return 0;
+}
+
 }  // namespace
 
 void use_fast_norms(N_Vector v) {
@@ -80,6 +94,11 @@ void use_fast_norms(N_Vector v) {
   v->ops->nvlinearcombination = linear_combination;
   v->ops->nvlinearsum = linear_sum;
   v->ops->nvscale = scale;
+  v->ops->nvconst = constant;
+  v->ops->nvabs = absolute;
+  v->ops->nvinv = inverse;
+  v->ops->nvaddconst = add_constant;
+  v->ops->nvscalevectorarray = scale_vector_array;
 }
 
 }  // namespace evas::sundials

@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "integrators/common.h"
+#include "integrators/fast_nvector.h"
 
 namespace evas {
 namespace sundials {
@@ -32,14 +33,6 @@ inline std::string flag_name(char* owned) {
   const std::unique_ptr<char, void (*)(void*)> p(owned, &std::free);
   return p ? std::string(p.get()) : std::string("unknown flag");
 }
-
-/// Replaces the weighted norms, linear sums, scalings and linear combinations
-/// of a serial N_Vector (and of every clone the solver makes of it) by
-/// vectorized ones (integrators/fast_nvector.cpp): the library's serial loops
-/// sum in one chain, which the compiler may not reorder, and IDA and CVODE
-/// take several norms and combinations per step. Also turns on the fused
-/// vector operations (one call for IDA's and CVODE's linear combinations).
-void use_fast_norms(N_Vector v);
 
 /// One SUNContext per integrator instance.
 class Context {

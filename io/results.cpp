@@ -290,6 +290,18 @@ std::string json_number(double x) {
 
 }  // namespace
 
+double process_peak_memory_mb() {
+  std::ifstream f("/proc/self/status");
+  std::string line;
+  while (std::getline(f, line))
+    if (line.rfind("VmHWM:", 0) == 0) {
+      std::istringstream is(line.substr(6));
+      double kb = 0.0;
+      if (is >> kb) return kb / 1024.0;
+    }
+  return 0.0;
+}
+
 void write_summary_json(const std::string& path, const RunSummary& s) {
   std::ostringstream o;
   const IntegratorSettings& is = s.settings;
@@ -314,6 +326,7 @@ void write_summary_json(const std::string& path, const RunSummary& s) {
   o << "  \"t_end\": " << json_number(s.t_end) << ",\n";
   o << "  \"t_reached\": " << json_number(s.t_reached) << ",\n";
   o << "  \"rows\": " << s.rows << ",\n";
+  o << "  \"peak_memory_mb\": " << json_number(s.peak_memory_mb) << ",\n";
   o << "  \"stats\": {\n";
   o << "    \"steps\": " << st.steps << ",\n";
   o << "    \"residual_evals\": " << st.residual_evals << ",\n";

@@ -115,10 +115,16 @@ struct RunSummary {
   double t_start = 0.0, t_end = 0.0;  ///< requested
   double t_reached = 0.0;             ///< last output time written
   long rows = 0;
+  double peak_memory_mb = 0.0;  ///< the process's peak resident memory (0: unknown)
   IntegratorStats stats;
   std::vector<Channel> channels;
   std::vector<ChannelSummary> channel_summary;
 };
+
+/// Peak resident memory of this process so far [MB] (Linux: VmHWM of
+/// /proc/self/status, the high-water mark of this program's own memory map);
+/// 0 where it cannot be read.
+double process_peak_memory_mb();
 
 /// Writes `s` as JSON to `path`. Throws RunError naming the file on failure.
 void write_summary_json(const std::string& path, const RunSummary& s);

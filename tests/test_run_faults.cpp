@@ -242,6 +242,26 @@ void expect_no_leftovers(const fs::path& dir) {
 // ---------------------------------------------------------------------------
 // 1. Full disk
 
+// A completed run reports its peak memory (VmHWM of the evas process) in
+// summary.json: a positive number of megabytes, and not the test's own.
+TEST(RunFaults, SummaryReportsPeakMemory) {
+  TempFolder tmp;
+  write_text(tmp.path() / "s.yaml", demo_scene("mem", "0.05", "1e-3"));
+  const fs::path out = tmp.path() / "out";
+  const Outcome o =
+      run_evas({"run", (tmp.path() / "s.yaml").string(), "--out", out.string(), "-q"},
+               tmp.path() / "log");
+  ASSERT_EQ(o.code, 0) << o.log;
+  const std::string json = read_text(out / "summary.json");
+  const std::string key = "\"peak_memory_mb\": ";
+  const auto p = json.find(key);
+  ASSERT_NE(p, std::string::npos) << json;
+  const double mb = std::stod(json.substr(p + key.size()));
+  std::printf("[ measured ] demo scene: peak memory %.1f MB\n", mb);
+  EXPECT_GT(mb, 1.0);
+  EXPECT_LT(mb, 2048.0);
+}
+
 TEST(RunFaults, InjectedFullDiskKeepsFlushedRows) {
   // The disk is "full" once 300 rows are on disk: the space the writer keeps
   // allocated beyond the end of the file cannot be renewed, and every write

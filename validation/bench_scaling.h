@@ -4,12 +4,11 @@
 // number of force elements (each engine mount split into m parallel mounts of
 // k/m, c/m at the same markers: the same loads from more elements), with the
 // exponent of a least-squares power law, and the peak memory of each run (an
-// `evas run` child, its ru_maxrss). IDA with the second-order solver, rtol
+// `evas run` child, as its summary.json reports it). IDA with the second-order solver, rtol
 // 1e-5, atol 1e-9, the first 0.06 s (one and a half 720 deg cycles).
 #pragma once
 
 #include <spawn.h>
-#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -49,7 +48,9 @@ inline double power_exponent(const std::vector<double>& x, const std::vector<dou
   return (m * sxy - sx * sy) / (m * sxx - sx * sx);
 }
 
-/// Peak resident memory [MB] of `evas run SCENE` in a child process.
+/// Peak resident memory [MB] of `evas run SCENE` in a child process, as the
+/// run reports it in summary.json (VmHWM of its own memory map: the child's
+/// rusage would count the parent's pages it was forked with).
 inline double run_peak_mb(const std::string& evas, const std::string& scene,
                           const std::string& out) {
   std::vector<std::string> args = {evas, "run", scene, "--out", out, "--quiet"};
@@ -60,10 +61,15 @@ inline double run_peak_mb(const std::string& evas, const std::string& scene,
   if (posix_spawn(&pid, evas.c_str(), nullptr, nullptr, argv.data(), environ) != 0)
     throw RunError("cannot start " + evas);
   int status = 0;
-  rusage ru{};
-  if (wait4(pid, &status, 0, &ru) < 0 || !WIFEXITED(status) || WEXITSTATUS(status) != 0)
+  if (waitpid(pid, &status, 0) < 0 || !WIFEXITED(status) || WEXITSTATUS(status) != 0)
     throw RunError(evas + " run " + scene + " failed");
-  return static_cast<double>(ru.ru_maxrss) / 1024.0;  // kB -> MB
+  std::ifstream f(out + "/summary.json");
+  std::stringstream ss;
+  ss << f.rdbuf();
+  const std::string text = ss.str(), key = "\"peak_memory_mb\": ";
+  const auto p = text.find(key);
+  if (p == std::string::npos) throw RunError(out + "/summary.json: no peak_memory_mb");
+  return std::stod(text.substr(p + key.size()));
 }
 
 inline std::string replace_all(std::string s, const std::string& from, const std::string& to) {
