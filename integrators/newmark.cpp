@@ -37,29 +37,7 @@ void NewmarkIntegrator::setup() {
   K_ = p_->jacobian_pattern();
   K_.makeCompressed();
   C_ = K_;
-  std::vector<Triplet> trip;
-  for (int c = 0; c < n_; ++c) {
-    trip.emplace_back(c, c, 0.0);
-    for (SpMat::InnerIterator it2(K_, c); it2; ++it2) trip.emplace_back(it2.row(), c, 0.0);
-  }
-  S_.resize(n_, n_);
-  S_.setFromTriplets(trip.begin(), trip.end());
-  S_.makeCompressed();
-  auto position = [&](int row, int col) {
-    for (int k = S_.outerIndexPtr()[col]; k < S_.outerIndexPtr()[col + 1]; ++k)
-      if (S_.innerIndexPtr()[k] == row) return k;
-    throw std::logic_error(name() + ": entry missing from the iteration pattern");
-  };
-  pos_kc_.resize(static_cast<std::size_t>(K_.nonZeros()));
-  for (int c = 0; c < n_; ++c)
-    for (int k = K_.outerIndexPtr()[c]; k < K_.outerIndexPtr()[c + 1]; ++k)
-      pos_kc_[static_cast<std::size_t>(k)] = position(K_.innerIndexPtr()[k], c);
-  pos_diag_.resize(static_cast<std::size_t>(n_));
-  for (int i = 0; i < n_; ++i) pos_diag_[static_cast<std::size_t>(i)] = position(i, i);
-  klu_ = std::make_unique<Eigen::KLU<SpMat>>();
-  klu_->analyzePattern(S_);
-  if (klu_->info() != Eigen::Success)
-    throw RunError(name() + ": KLU symbolic analysis of the iteration matrix failed");
+  so_ = std::make_unique<SecondOrderSolver>(K_);
   factored_ = false;
   have_jacobian_ = false;
   body_ = false;
@@ -80,18 +58,13 @@ void NewmarkIntegrator::kinematics(double h, const Vec& a) {
 }
 
 void NewmarkIntegrator::factorize(const SpMat& K, const SpMat& C, double h) {
-  double* s = S_.valuePtr();
-  std::fill(s, s + S_.nonZeros(), 0.0);
+  std::copy(K.valuePtr(), K.valuePtr() + K.nonZeros(), so_->K().valuePtr());
+  std::copy(C.valuePtr(), C.valuePtr() + C.nonZeros(), so_->C().valuePtr());
   const double ck = (1.0 - par_.alpha_f) * par_.beta * h * h;
   const double cc = (1.0 - par_.alpha_f) * par_.gamma * h;
-  const double* kv = K.valuePtr();
-  const double* cv = C.valuePtr();
-  for (std::size_t e = 0; e < pos_kc_.size(); ++e) s[pos_kc_[e]] += ck * kv[e] + cc * cv[e];
-  for (int pos : pos_diag_) s[pos] += 1.0 - par_.alpha_m;
-  klu_->factorize(S_);
+  factored_ = so_->factor_matrix(ck, cc, 1.0 - par_.alpha_m);
   ++stats_.linear_setups;
   h_factor_ = h;
-  factored_ = klu_->info() == Eigen::Success;
   if (!factored_)
     throw RunError(name() + ": the iteration matrix is singular" + where(t_ + h, h, q1_, v1_));
 }
@@ -178,7 +151,7 @@ bool NewmarkIntegrator::step(double t, double h) {
         p_->force_jacobian(t1, q1_.data(), v1_.data(), K_, C_);
         ++stats_.jacobian_evals;
         factorize(K_, C_, h);
-        delta_ = klu_->solve(R_);
+        so_->solve_matrix(R_.data(), delta_.data());
         ++stats_.linear_solves;
         break;
       case Iteration::EffectiveMass:
@@ -192,13 +165,13 @@ bool NewmarkIntegrator::step(double t, double h) {
         } else if (!factored_ || std::abs(h / h_factor_ - 1.0) > 0.2) {
           factorize(K_, C_, h);
         }
-        delta_ = klu_->solve(R_);
+        so_->solve_matrix(R_.data(), delta_.data());
         ++stats_.linear_solves;
         break;
       case Iteration::FixedPoint:
       case Iteration::Anderson:
         if (body_) {
-          delta_ = klu_->solve(R_);
+          so_->solve_matrix(R_.data(), delta_.data());
           ++stats_.linear_solves;
         } else {
           delta_ = R_ / (1.0 - am);

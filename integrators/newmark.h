@@ -51,12 +51,12 @@
 //     a_{n+1} (first step: e_v = h^2/12 (a_{n+1} - a_n), an over-estimate).
 #pragma once
 
-#include <Eigen/KLUSupport>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "integrators/fixed_step.h"
+#include "integrators/second_order_ls.h"
 
 namespace evas {
 
@@ -84,7 +84,8 @@ class NewmarkIntegrator : public FixedStepIntegrator {
  private:
   enum class Iteration { FixedPoint, Anderson, EffectiveMass, Newton };
   void kinematics(double h, const Vec& a);
-  // S = (1 - am) I + (1 - af)(beta h^2 K + gamma h C) into S_, factorized
+  // S = (1 - am) I + (1 - af)(beta h^2 K + gamma h C), factorized by so_ (dense
+  // LU up to n = 200, KLU above; integrators/second_order_ls.h)
   void factorize(const SpMat& K, const SpMat& C, double h);
   bool fail(const std::string& why, double t1, double h, int iterations);
   std::string contraction_advice(double h) const;
@@ -94,10 +95,9 @@ class NewmarkIntegrator : public FixedStepIntegrator {
 
   Parameters par_;
   Iteration it_ = Iteration::FixedPoint;
-  SpMat K_, C_, S_;
+  SpMat K_, C_;
   Vec kb_last_, cb_last_;  // body operator of the last factorization (fixed point)
-  std::vector<int> pos_kc_, pos_diag_;
-  std::unique_ptr<Eigen::KLU<SpMat>> klu_;
+  std::unique_ptr<SecondOrderSolver> so_;
   bool factored_ = false, have_jacobian_ = false, body_ = false;
   double h_factor_ = 0.0;
   Vec R_, delta_;

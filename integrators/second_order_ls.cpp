@@ -80,7 +80,15 @@ void SecondOrderSolver::set_coefficients(double a, double b, double c, double d,
 }
 
 bool SecondOrderSolver::factor() {
-  const double kk = b_ * c_, cc = -a_ * e_, ii = -a_ * d_;
+  if (!factor_matrix(b_ * c_, -a_ * e_, -a_ * d_)) return false;
+  fa_ = a_;
+  fb_ = b_;
+  fd_ = d_;
+  fe_ = e_;
+  return true;
+}
+
+bool SecondOrderSolver::factor_matrix(double kk, double cc, double ii) {
   const double* kv = K_.valuePtr();
   const double* cv = C_.valuePtr();
   const int* outer = K_.outerIndexPtr();
@@ -100,41 +108,48 @@ bool SecondOrderSolver::factor() {
     lu_->compute(S_);  // in place: S_ now holds L and U
     // singular when a pivot vanishes against the largest (no allocation, unlike rcond())
     const auto u = S_.diagonal().cwiseAbs();
-    if (!(u.minCoeff() > 1e-15 * u.maxCoeff())) return false;
-  } else {
-    // Ss_ has K's pattern plus the diagonal, in the same column order: walk both.
-    double* sv = Ss_.valuePtr();
-    std::fill(sv, sv + Ss_.nonZeros(), 0.0);
-    const int* souter = Ss_.outerIndexPtr();
-    const int* sinner = Ss_.innerIndexPtr();
-    for (int col = 0; col < n_; ++col) {
-      int p = souter[col];
-      for (int k = outer[col]; k < outer[col + 1]; ++k) {
-        while (sinner[p] != inner[k]) ++p;
-        sv[p] += kk * kv[k] + cc * cv[k];
-      }
-    }
-    for (int i = 0; i < n_; ++i) sv[diag_[static_cast<std::size_t>(i)]] += ii;
-    // refactorize with the old pivots (allocates nothing); a full factorization
-    // (allocates) the first time and when the pivots have gone bad
-    constexpr double kKluRcond = 1e-12;
-    Klu& k = *klu_;
-    int* cp = Ss_.outerIndexPtr();
-    int* ri = Ss_.innerIndexPtr();
-    bool ok = k.numeric && klu_refactor(cp, ri, sv, k.symbolic, k.numeric, &k.common) &&
-              klu_rcond(k.symbolic, k.numeric, &k.common) && k.common.rcond > kKluRcond;
-    if (!ok) {
-      if (k.numeric) klu_free_numeric(&k.numeric, &k.common);
-      k.numeric = klu_factor(cp, ri, sv, k.symbolic, &k.common);
-      ok = k.numeric && klu_rcond(k.symbolic, k.numeric, &k.common) && k.common.rcond > 1e-15;
-    }
-    if (!ok) return false;
+    return u.minCoeff() > 1e-15 * u.maxCoeff();
   }
-  fa_ = a_;
-  fb_ = b_;
-  fd_ = d_;
-  fe_ = e_;
-  return true;
+  // Ss_ has K's pattern plus the diagonal, in the same column order: walk both.
+  double* sv = Ss_.valuePtr();
+  std::fill(sv, sv + Ss_.nonZeros(), 0.0);
+  const int* souter = Ss_.outerIndexPtr();
+  const int* sinner = Ss_.innerIndexPtr();
+  for (int col = 0; col < n_; ++col) {
+    int p = souter[col];
+    for (int k = outer[col]; k < outer[col + 1]; ++k) {
+      while (sinner[p] != inner[k]) ++p;
+      sv[p] += kk * kv[k] + cc * cv[k];
+    }
+  }
+  for (int i = 0; i < n_; ++i) sv[diag_[static_cast<std::size_t>(i)]] += ii;
+  // refactorize with the old pivots (allocates nothing); a full factorization
+  // (allocates) the first time and when the pivots have gone bad
+  constexpr double kKluRcond = 1e-12;
+  Klu& k = *klu_;
+  int* cp = Ss_.outerIndexPtr();
+  int* ri = Ss_.innerIndexPtr();
+  bool ok = k.numeric && klu_refactor(cp, ri, sv, k.symbolic, k.numeric, &k.common) &&
+            klu_rcond(k.symbolic, k.numeric, &k.common) && k.common.rcond > kKluRcond;
+  if (!ok) {
+    if (k.numeric) klu_free_numeric(&k.numeric, &k.common);
+    k.numeric = klu_factor(cp, ri, sv, k.symbolic, &k.common);
+    ok = k.numeric && klu_rcond(k.symbolic, k.numeric, &k.common) && k.common.rcond > 1e-15;
+  }
+  return ok;
+}
+
+void SecondOrderSolver::solve_matrix(const double* r, double* x) {
+  Eigen::Map<const Vec> rv(r, n_);
+  if (dense_) {
+    xq_.noalias() = lu_->permutationP() * rv;
+    S_.triangularView<Eigen::UnitLower>().solveInPlace(xq_);
+    S_.triangularView<Eigen::Upper>().solveInPlace(xq_);
+  } else {
+    xq_ = rv;
+    klu_solve(klu_->symbolic, klu_->numeric, n_, 1, xq_.data(), &klu_->common);
+  }
+  Eigen::Map<Vec>(x, n_) = xq_;
 }
 
 void SecondOrderSolver::solve(const double* r, double* x) {
@@ -145,17 +160,10 @@ void SecondOrderSolver::solve(const double* r, double* x) {
   else
     rhs_.noalias() = C_ * rq;
   rhs_ = fb_ * rv - fd_ * rq - fe_ * rhs_;
-  if (dense_) {
-    xq_.noalias() = lu_->permutationP() * rhs_;
-    S_.triangularView<Eigen::UnitLower>().solveInPlace(xq_);
-    S_.triangularView<Eigen::Upper>().solveInPlace(xq_);
-  } else {
-    xq_ = rhs_;
-    klu_solve(klu_->symbolic, klu_->numeric, n_, 1, xq_.data(), &klu_->common);
-  }
+  solve_matrix(rhs_.data(), rhs_.data());  // rhs_ now holds x_q
   Eigen::Map<Vec> xq(x, n_), xv(x + n_, n_);
-  xv = (rq - fa_ * xq_) / fb_;  // reads r_q before x_q overwrites it (r may alias x)
-  xq = xq_;
+  xv = (rq - fa_ * rhs_) / fb_;  // reads r_q before x_q overwrites it (r may alias x)
+  xq = rhs_;
 }
 
 // ---- SUNDIALS wrappers ----

@@ -51,6 +51,13 @@ class SecondOrderSolver {
   /// may alias.
   void solve(const double* r, double* x);
 
+  /// The n x n matrix alone: S = kk K + cc C + ii I from the current K and C,
+  /// factorized (false when singular); the Newmark family's effective
+  /// stiffness (generalized-alpha, linear acceleration).
+  bool factor_matrix(double kk, double cc, double ii);
+  /// x = S^-1 r for the last factorization (n long; may alias).
+  void solve_matrix(const double* r, double* x);
+
  private:
   int n_;
   bool dense_;
