@@ -248,9 +248,8 @@ TEST(RunFaults, SummaryReportsPeakMemory) {
   TempFolder tmp;
   write_text(tmp.path() / "s.yaml", demo_scene("mem", "0.05", "1e-3"));
   const fs::path out = tmp.path() / "out";
-  const Outcome o =
-      run_evas({"run", (tmp.path() / "s.yaml").string(), "--out", out.string(), "-q"},
-               tmp.path() / "log");
+  const Outcome o = run_evas({"run", (tmp.path() / "s.yaml").string(), "--out", out.string(), "-q"},
+                             tmp.path() / "log");
   ASSERT_EQ(o.code, 0) << o.log;
   const std::string json = read_text(out / "summary.json");
   const std::string key = "\"peak_memory_mb\": ";
