@@ -63,9 +63,12 @@ export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1"
 
 # The first frame of the report's stack that is not the sanitizer/fuzzer runtime
 # or the C/C++ runtime, e.g. "in H5F__super_read (/usr/lib/.../libhdf5_serial.so.103+0x...)".
+# libc's string functions are left out by name and by source (a symbolized
+# "__memcpy_avx512_unaligned_erms string/../sysdeps/..." names no library): the
+# frame below them is the one that passed the bad pointer.
 stack_top() {
   grep -E '^ *#[0-9]+ 0x[0-9a-f]+ ' "$1" |
-    grep -vE ' in (__interceptor_|__asan|__sanitizer|__ubsan|__lsan|fuzzer::|abort|raise|__GI_|malloc|calloc|realloc|free|operator new|operator delete|std::terminate|__cxa_|__gnu_cxx::__verbose|_Unwind|LLVMFuzzer|__libc|gsignal)|libclang_rt|compiler-rt|libc\.so|libstdc\+\+\.so|libgcc_s' |
+    grep -vE ' in (__interceptor_|__asan|__sanitizer|__ubsan|__lsan|fuzzer::|abort|raise|__GI_|malloc|calloc|realloc|free|operator new|operator delete|std::terminate|__cxa_|__gnu_cxx::__verbose|_Unwind|LLVMFuzzer|__libc|gsignal|__mem(cpy|move|set|cmp)|__str)|libclang_rt|compiler-rt|libc\.so|libstdc\+\+\.so|libgcc_s|sysdeps/' |
     head -1 | sed -E 's/^ *#[0-9]+ 0x[0-9a-f]+ //' || true
 }
 # One line: what the report says (first matching line).
