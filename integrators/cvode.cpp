@@ -84,20 +84,17 @@ class CvodeIntegrator final : public Integrator {
     check(CVodeInit(mem_, &CvodeIntegrator::rhs_cb, t0, y_.get()), "CVodeInit");
     check(CVodeSStolerances(mem_, s.rtol, s.atol), "CVodeSStolerances");
     check(CVodeSetUserData(mem_, this), "CVodeSetUserData");
-    so_.reset();
-    if (newton_ && s.linear_solver == "second-order") {
-      if (form_->internal_count() > 0)
+    if (newton_) {
+      if (s.linear_solver != "second-order") {
+        ls_.create(s.linear_solver, J_, y_.get(), ctx_);
+      } else if (form_->internal_count() > 0) {
         throw InputError(
             "cvode: linear_solver second-order needs a problem without internal states (this "
             "one has " +
             std::to_string(form_->internal_count()) + "); use klu");
-      so_ = std::make_unique<SecondOrderSolver>(model->jacobian_pattern());
-      ls_.adopt(sundials::second_order_matrix(ctx_, so_.get()),
-                sundials::second_order_linear_solver(ctx_, so_.get()));
-      check(CVodeSetLinearSolver(mem_, ls_.solver(), ls_.matrix()), "CVodeSetLinearSolver");
-      check(CVodeSetJacFn(mem_, &CvodeIntegrator::jacobian_cb), "CVodeSetJacFn");
-    } else if (newton_) {
-      ls_.create(s.linear_solver, J_, y_.get(), ctx_);
+      } else {
+        ls_.create_second_order(model->jacobian_pattern(), ctx_);
+      }
       check(CVodeSetLinearSolver(mem_, ls_.solver(), ls_.matrix()), "CVodeSetLinearSolver");
       check(CVodeSetJacFn(mem_, &CvodeIntegrator::jacobian_cb), "CVodeSetJacFn");
     } else {
@@ -263,9 +260,10 @@ class CvodeIntegrator final : public Integrator {
                          N_Vector, N_Vector) {
     auto* self = static_cast<CvodeIntegrator*>(user);
     return self->guard_.run([&] {
-      if (self->so_) {  // K, C only: CVODE forms I - gamma J through the matrix's scaleaddi
+      if (SecondOrderSolver* so = self->ls_.second_order()) {
+        // K, C only: CVODE forms I - gamma J through the matrix's scaleaddi
         const double* yv = N_VGetArrayPointer(y);
-        self->form_->problem().force_jacobian(t, yv, yv + self->n_, self->so_->K(), self->so_->C());
+        self->form_->problem().force_jacobian(t, yv, yv + self->n_, so->K(), so->C());
         return;
       }
       self->form_->rhs_jacobian(t, N_VGetArrayPointer(y), self->J_);
@@ -286,7 +284,6 @@ class CvodeIntegrator final : public Integrator {
   sundials::NonlinearSolver nls_;
   std::unique_ptr<dae::PenaltyProblem> penalty_;  // formulation=penalty
   std::unique_ptr<FirstOrderForm> form_;
-  std::unique_ptr<SecondOrderSolver> so_;  // linear_solver=second-order
   SpMat J_;
   Problem* p_ = nullptr;
   IntegratorSettings s_;

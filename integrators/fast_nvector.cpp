@@ -85,7 +85,7 @@ int scale_vector_array(int nvec, realtype* c, N_Vector* X, N_Vector* Z) {
 
 }  // namespace
 
-void use_fast_norms(N_Vector v) {
+void use_fast_operations(N_Vector v) {
   N_VEnableFusedOps_Serial(v, SUNTRUE);
   v->ops->nvwsqrsumlocal = wsqrsum;
   v->ops->nvwrmsnorm = wrms;

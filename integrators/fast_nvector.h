@@ -12,6 +12,6 @@ namespace evas::sundials {
 /// dependent chain, which the compiler may not reorder, and IDA and CVODE take
 /// several norms and combinations per step. Also turns on the fused vector
 /// operations (one call for IDA's and CVODE's linear combinations).
-void use_fast_norms(N_Vector v);
+void use_fast_operations(N_Vector v);
 
 }  // namespace evas::sundials

@@ -114,7 +114,6 @@ class IdaIntegrator final : public Integrator {
     else
       check(IDASStolerances(mem_, s.rtol, s.atol), "IDASStolerances");
     check(IDASetUserData(mem_, this), "IDASetUserData");
-    so_.reset();
     if (s.linear_solver == "second-order") {
       if (dae_)
         throw InputError(
@@ -124,9 +123,7 @@ class IdaIntegrator final : public Integrator {
                         : model->has_mass()           ? "a mass matrix"
                                                       : "internal states") +
             "); use klu");
-      so_ = std::make_unique<SecondOrderSolver>(model->jacobian_pattern());
-      ls_.adopt(sundials::second_order_matrix(ctx_, so_.get()),
-                sundials::second_order_linear_solver(ctx_, so_.get()));
+      ls_.create_second_order(model->jacobian_pattern(), ctx_);
       reuse_ = Reuse{};
     } else {
       ls_.create(s.linear_solver, J_, y_.get(), ctx_);
@@ -282,7 +279,8 @@ class IdaIntegrator final : public Integrator {
     IDAGetNumLinResEvals(mem_, &nre_ls);  // residual evaluations for FD Jacobians: 0 here
     s.residual_evals += nre_ls;
     IDAGetNumJacEvals(mem_, &s.jacobian_evals);
-    if (so_) s.jacobian_evals = reuse_.evaluations;  // K, C evaluated (the rest re-formed)
+    if (ls_.second_order())
+      s.jacobian_evals = reuse_.evaluations;  // K, C evaluated (the rest re-formed)
     IDAGetNumLinSolvSetups(mem_, &s.linear_setups);
     IDAGetNumNonlinSolvIters(mem_, &nni);
     s.nonlinear_iterations = nni;
@@ -372,7 +370,7 @@ class IdaIntegrator final : public Integrator {
                          SUNMatrix J, void* user, N_Vector, N_Vector, N_Vector) {
     auto* self = static_cast<IdaIntegrator*>(user);
     return self->guard_.run([&] {
-      if (self->so_) {
+      if (self->ls_.second_order()) {
         self->second_order_jacobian(t, cj, N_VGetArrayPointer(y));
         return;
       }
@@ -395,14 +393,15 @@ class IdaIntegrator final : public Integrator {
     // (IDA's counters restart at IDAReInit, which also resets reuse_)
     const bool fresh = !reuse_.valid || fails != reuse_.fails ||
                        steps - reuse_.step >= static_cast<long>(s_.jacobian_age);
+    SecondOrderSolver& so = *ls_.second_order();
     if (fresh) {
-      form_->problem().force_jacobian(t, y, y + n_, so_->K(), so_->C());
+      form_->problem().force_jacobian(t, y, y + n_, so.K(), so.C());
       reuse_.valid = true;
       reuse_.step = steps;
       reuse_.fails = fails;
       ++reuse_.evaluations;
     }
-    so_->set_coefficients(cj, -1.0, 1.0, cj, 1.0);
+    so.set_coefficients(cj, -1.0, 1.0, cj, 1.0);
   }
 
   // Error weights 1/(rtol |y_i| + atol), times h^p_i for the higher-index
@@ -435,9 +434,8 @@ class IdaIntegrator final : public Integrator {
   std::unique_ptr<dae::PenaltyProblem> penalty_;  // formulation=penalty: the ODE run
   std::unique_ptr<FirstOrderForm> form_;          // M = I, no constraints (or penalty)
   std::unique_ptr<dae::DaeForm> dae_;             // mass matrix or constraints
-  std::unique_ptr<SecondOrderSolver> so_;         // linear_solver=second-order
   struct Reuse {
-    bool valid = false;    // K, C in so_ are from an evaluation of this segment
+    bool valid = false;    // K, C in the second-order solver are from an evaluation of this segment
     long step = 0;         // IDA's step count at that evaluation
     long fails = 0;        // ... and its convergence-failure count
     long evaluations = 0;  // K, C evaluations in this segment

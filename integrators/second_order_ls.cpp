@@ -81,6 +81,13 @@ void SecondOrderSolver::set_coefficients(double a, double b, double c, double d,
 
 bool SecondOrderSolver::factor() {
   if (!factor_matrix(b_ * c_, -a_ * e_, -a_ * d_)) return false;
+  if (dense_) {  // C dense for the right-hand side of solve()
+    Cd_.setZero();
+    const int* outer = C_.outerIndexPtr();
+    const int* inner = C_.innerIndexPtr();
+    for (int col = 0; col < n_; ++col)
+      for (int k = outer[col]; k < outer[col + 1]; ++k) Cd_(inner[k], col) = C_.valuePtr()[k];
+  }
   fa_ = a_;
   fb_ = b_;
   fd_ = d_;
@@ -95,14 +102,9 @@ bool SecondOrderSolver::factor_matrix(double kk, double cc, double ii) {
   const int* inner = K_.innerIndexPtr();
   if (dense_) {
     S_.setZero();
-    Cd_.setZero();
     for (int col = 0; col < n_; ++col) {
       double* s = S_.col(col).data();
-      double* cd = Cd_.col(col).data();
-      for (int k = outer[col]; k < outer[col + 1]; ++k) {
-        s[inner[k]] += kk * kv[k] + cc * cv[k];
-        cd[inner[k]] = cv[k];
-      }
+      for (int k = outer[col]; k < outer[col + 1]; ++k) s[inner[k]] += kk * kv[k] + cc * cv[k];
     }
     S_.diagonal().array() += ii;
     lu_->compute(S_);  // in place: S_ now holds L and U

@@ -23,6 +23,7 @@
 
 #include "integrators/common.h"
 #include "integrators/fast_nvector.h"
+#include "integrators/second_order_ls.h"
 
 namespace evas {
 namespace sundials {
@@ -60,7 +61,7 @@ class Vector {
     reset();
     v_ = N_VNew_Serial(n, ctx);
     if (!v_) throw RunError("N_VNew_Serial failed");
-    use_fast_norms(v_);
+    use_fast_operations(v_);
   }
   void reset() {
     if (v_) N_VDestroy(v_);
@@ -132,15 +133,20 @@ class LinearSystem {
     if (A_) SUNMatDestroy(A_);
     LS_ = nullptr;
     A_ = nullptr;
+    so_.reset();  // after the SUNDIALS objects that point at it
   }
 
-  /// Takes ownership of a matrix and solver made elsewhere (second_order_ls.h).
-  void adopt(SUNMatrix A, SUNLinearSolver LS) {
+  /// The second-order solver (integrators/second_order_ls.h) on `pattern`, the
+  /// pattern of K and C; the Jacobian callback writes K, C into second_order().
+  void create_second_order(const SpMat& pattern, SUNContext ctx) {
     reset();
-    A_ = A;
-    LS_ = LS;
+    so_ = std::make_unique<SecondOrderSolver>(pattern);
+    A_ = second_order_matrix(ctx, so_.get());
+    LS_ = second_order_linear_solver(ctx, so_.get());
     sparse_ = false;
   }
+  /// The second-order solver, or nullptr for klu and dense.
+  SecondOrderSolver* second_order() const { return so_.get(); }
 
   SUNMatrix matrix() const { return A_; }
   SUNLinearSolver solver() const { return LS_; }
@@ -150,6 +156,7 @@ class LinearSystem {
   SUNMatrix A_ = nullptr;
   SUNLinearSolver LS_ = nullptr;
   std::vector<sunindextype> colptr_, rowind_;
+  std::unique_ptr<SecondOrderSolver> so_;  // linear_solver=second-order
 };
 
 /// Owner of a nonlinear solver (CVODE Adams + fixed point).

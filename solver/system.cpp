@@ -23,17 +23,13 @@ System::System(Model& model) : model_(model) {
   Lm_.resize(markers.size());
   Pq_.resize(markers.size());
   Pv_.resize(markers.size());
-  int nmax = 1;
   for (std::size_t m = 0; m < markers.size(); ++m) {
     if (markers[m].on_ground()) continue;
     const int nm = bodies[markers[m].body].n();
-    nmax = std::max(nmax, nm);
     Lm_[m] = Mat::Zero(6, nm);
     Pq_[m] = Mat::Zero(12, nm);
     Pv_[m] = Mat::Zero(12, nm);
   }
-  buf_a_.assign(12 * nmax, 0.0);
-  buf_b_.assign(static_cast<std::size_t>(nmax) * nmax, 0.0);
   mrow_.assign(markers.size(), -1);
   std::vector<int> rows(static_cast<std::size_t>(nb), 0);
   for (std::size_t m = 0; m < markers.size(); ++m)

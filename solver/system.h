@@ -168,8 +168,7 @@ class System : public Problem {
     Mat blk;            // -[Bu; Bt]^T [YK YC]
   };
   std::vector<PairWork> pairs_;
-  std::vector<int> pair_index_;        // [bi * nb + bj] -> index in pairs_, -1 if none
-  std::vector<double> buf_a_, buf_b_;  // scratch for element blocks
+  std::vector<int> pair_index_;  // [bi * nb + bj] -> index in pairs_, -1 if none
   // block_start_[bi * nb + bj][c]: value index of the first row of body bi in
   // column offset(bj) + c of the pattern (-1 if the block is absent).
   std::vector<std::vector<int>> block_start_;

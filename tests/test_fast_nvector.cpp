@@ -27,7 +27,7 @@ class FastNVector : public ::testing::Test {
     std::mt19937 rng(seed);
     std::uniform_real_distribution<double> u(lo, hi);
     Pair p{N_VNew_Serial(n, ctx_), N_VNew_Serial(n, ctx_)};
-    evas::sundials::use_fast_norms(p.fast);
+    evas::sundials::use_fast_operations(p.fast);
     for (long i = 0; i < n; ++i) NV_Ith_S(p.plain, i) = NV_Ith_S(p.fast, i) = u(rng);
     owned_.push_back(p.plain);
     owned_.push_back(p.fast);
