@@ -203,6 +203,8 @@ class FixedStepIntegrator : public Integrator {
     ++stats_.residual_evals;
     start_acceleration();
   }
+  /// True when a_prev_, h_prev_ hold the step before the current one.
+  bool has_history() const { return have_prev_; }
   /// Time of the last output handed back by advance().
   double last_output_time() const { return tout_last_; }
   double previous_time() const { return t_prev_; }

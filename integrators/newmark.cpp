@@ -93,7 +93,12 @@ bool NewmarkIntegrator::step(double t, double h) {
   const bool balance = par_.balance && !adaptive;
   const double btol = s_.balance_tol;
   Vec& a = a1_;
-  a = a_;  // predictor
+  // predictor: the acceleration extrapolated linearly from the last two steps
+  // (a_n at the start); a state it predicts that an element refuses falls back
+  // to a_n
+  bool extrapolated = has_history() && h_prev_ > 0.0;
+  a = a_;
+  if (extrapolated) a += (h / h_prev_) * (a_ - a_prev_);
   const double a_norm = a_.norm();
   rnorms_.clear();
   bool fresh = false;  // effective-mass: matrix evaluated during this step
@@ -104,6 +109,12 @@ bool NewmarkIntegrator::step(double t, double h) {
     try {
       p_->force(t1, q1_.data(), v1_.data(), f1_.data());
     } catch (const RangeError& e) {
+      if (k == 0 && extrapolated) {  // try the constant predictor instead
+        extrapolated = false;
+        a = a_;
+        --k;
+        continue;
+      }
       if (k == 0) throw;  // the predictor itself: the element's own message
       ++stats_.refused_states;
       return fail(std::string("iteration ") + std::to_string(k) +
@@ -187,8 +198,14 @@ bool NewmarkIntegrator::step(double t, double h) {
     if (!balance) {
       const double dn = delta_.lpNorm<Eigen::Infinity>();
       if (!std::isfinite(dn)) return fail("the update is not finite", t1, h, k + 1);
-      const bool converged =
-          adaptive ? update_norm(h) <= 0.1 : dn <= s_.rtol * a.lpNorm<Eigen::Infinity>() + s_.atol;
+      // increment test on the error left in a: the last update dn, or from the
+      // second update on, the rest of a linearly converging iteration,
+      // rate / (1 - rate) dn with rate = dn / (the update before)
+      const double tol = s_.rtol * a.lpNorm<Eigen::Infinity>() + s_.atol;
+      const double rate = k > 0 ? dn / prev : 1.0;
+      const bool converged = adaptive
+                                 ? update_norm(h) <= 0.1
+                                 : dn <= tol || (rate < 0.9 && rate / (1.0 - rate) * dn <= tol);
       if (converged) {
         kinematics(h, a);
         f1_ = -((1.0 - am) * a + am * a_ + af * f_) / (1.0 - af);

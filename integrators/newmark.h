@@ -28,13 +28,18 @@
 //                   less than a factor 2 with a matrix from an earlier step, and
 //                   refactorized when h changes by more than 20 %.
 //   newton          full Newton: K, C and S at every iterate.
+// Predictor: a extrapolated linearly from a_{n-1}, a_n (a_n on the first step
+// after a start, or when an element refuses the extrapolated state).
 // Convergence:
 //   balance (linear-acceleration): eps = ||R||_2 / max(||(1 - alpha_m) a + alpha_m a_n||_2,
 //     ||a_n||_2, atol) <= balance_tol, checked on the iterate before an update, so
 //     the accepted state is balanced to that tolerance (the paper's 0.1 %);
-//   increment (generalized-alpha): ||delta a||_inf <= rtol ||a||_inf + atol after
-//     the update; f_{n+1} is then taken from R = 0 itself, so the discrete
-//     equations hold exactly;
+//   increment (generalized-alpha): after the update, ||delta a||_inf <= tol =
+//     rtol ||a||_inf + atol, or, from the second update on, the error a linearly
+//     converging iteration leaves, rate / (1 - rate) ||delta a||_inf <= tol with
+//     rate = ||delta a|| / ||delta a before|| < 0.9 (as SUNDIALS' Newton
+//     estimates its convergence rate); f_{n+1} is then taken from R = 0 itself,
+//     so the discrete equations hold exactly;
 //   adaptive steps (both methods): the q, v changes of the last update,
 //     (beta h^2, gamma h) delta a, below 0.1 in the weighted RMS norm of the
 //     error test (as SUNDIALS' Newton tests in the error-test norm), then as

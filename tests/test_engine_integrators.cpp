@@ -120,6 +120,12 @@ TEST(EngineIntegrators, EveryMethodRunsOneRevolutionAndAgreesWithIda) {
               << " iterations, " << st.substeps << " substeps, " << st.error_test_failures
               << " rejected, " << st.wall_seconds << " s\n";
     EXPECT_LT(e, c.bound) << c.spec;
+    if (c.spec == "generalized-alpha step=1e-5") {
+      // the extrapolating predictor and the rate test of the increment
+      // iteration (integrators/newmark.h): measured 2.2 residuals per step
+      // (4.9 with the constant predictor and the last-update test alone)
+      EXPECT_LT(static_cast<double>(st.residual_evals) / static_cast<double>(st.steps), 2.8);
+    }
   }
 }
 

@@ -348,6 +348,47 @@ TEST(SdofFailures, GeneralizedAlphaNewtonLimit) {
 
 // ---------------------------------------------------------------- registry
 
+// The Newmark predictor extrapolates the acceleration from the last two steps;
+// when an element refuses the predicted state, the step starts again from the
+// constant-acceleration predictor instead of failing (integrators/newmark.h).
+class RefuseOnce : public SdofProblem {
+ public:
+  RefuseOnce(std::vector<Oscillator> osc, double t_refuse)
+      : SdofProblem(std::move(osc)), t_refuse_(t_refuse) {}
+  void force(double t, const double* q, const double* v, double* f) override {
+    if (!refused && t >= t_refuse_) {
+      refused = true;  // the first evaluation at or after t_refuse: a step's predictor
+      throw RangeError("test: state refused once");
+    }
+    SdofProblem::force(t, q, v, f);
+  }
+  bool refused = false;
+
+ private:
+  double t_refuse_;
+};
+
+TEST(SdofNewmark, RefusedPredictorFallsBackToConstantAcceleration) {
+  for (const char* name : {"generalized-alpha", "linear-acceleration"}) {
+    IntegratorSettings s;
+    s.name = name;
+    s.step = 0.01;
+    s.step_control = "fixed";  // a failed step would end the run
+    s.iteration = "effective-mass";
+    IntegratorStats plain, refused;
+    SdofProblem p(oscillators());
+    const Errors e0 = run(s, p, {0.25, 0.5, 0.75, 1.0}, &plain);
+    RefuseOnce r(oscillators(), 0.505);
+    const Errors e1 = run(s, r, {0.25, 0.5, 0.75, 1.0}, &refused);
+    EXPECT_TRUE(r.refused) << name;
+    EXPECT_EQ(refused.steps, plain.steps) << name;
+    EXPECT_EQ(refused.convergence_failures, 0) << name;
+    EXPECT_EQ(refused.substeps, 0) << name;
+    // the same step solved from another starting point: equal to the iteration tolerance
+    EXPECT_NEAR(e1.q, e0.q, 1e-6) << name;
+  }
+}
+
 TEST(SdofRegistry, NamesAndUnknown) {
   const auto names = integrator_names();
   ASSERT_EQ(names.size(), 4u);
