@@ -83,6 +83,23 @@ int scale_vector_array(int nvec, realtype* c, N_Vector* X, N_Vector* Z) {
   return 0;
 }
 
+// Z[i] = a X[i] + b Y[i] (element-wise: Z[i] may be X[i] or Y[i])
+int linear_sum_vector_array(int nvec, realtype a, N_Vector* X, realtype b, N_Vector* Y,
+                            N_Vector* Z) {
+  for (int i = 0; i < nvec; ++i) view_out(Z[i]) = a * view(X[i]) + b * view(Y[i]);
+  return 0;
+}
+
+// Z[i] = a[i] x + Y[i] (element-wise: Z[i] may be Y[i])
+int scale_add_multi(int nvec, realtype* a, N_Vector x, N_Vector* Y, N_Vector* Z) {
+  for (int i = 0; i < nvec; ++i) view_out(Z[i]) = a[i] * view(x) + view(Y[i]);
+  return 0;
+}
+
+void product(N_Vector x, N_Vector y, N_Vector z) { view_out(z) = view(x).cwiseProduct(view(y)); }
+
+void quotient(N_Vector x, N_Vector y, N_Vector z) { view_out(z) = view(x).cwiseQuotient(view(y)); }
+
 }  // namespace
 
 void use_fast_operations(N_Vector v) {
@@ -99,6 +116,10 @@ void use_fast_operations(N_Vector v) {
   v->ops->nvinv = inverse;
   v->ops->nvaddconst = add_constant;
   v->ops->nvscalevectorarray = scale_vector_array;
+  v->ops->nvlinearsumvectorarray = linear_sum_vector_array;
+  v->ops->nvscaleaddmulti = scale_add_multi;
+  v->ops->nvprod = product;
+  v->ops->nvdiv = quotient;
 }
 
 }  // namespace evas::sundials

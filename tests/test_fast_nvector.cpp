@@ -82,6 +82,34 @@ TEST_F(FastNVector, ElementwiseOperationsMatchTheLibrary) {
   N_VConst(7.0, z.plain);
   N_VConst(7.0, z.fast);
   EXPECT_EQ(max_diff(z.plain, z.fast), 0.0);
+  N_VProd(x.plain, y.plain, z.plain);
+  N_VProd(x.fast, y.fast, z.fast);
+  EXPECT_EQ(max_diff(z.plain, z.fast), 0.0);
+  N_VDiv(x.plain, y.plain, z.plain);
+  N_VDiv(x.fast, y.fast, z.fast);
+  EXPECT_EQ(max_diff(z.plain, z.fast), 0.0);
+}
+
+TEST_F(FastNVector, VectorArrayOperationsMatchTheLibrary) {
+  const long n = 144;
+  const Pair a = random(n, 11), b = random(n, 12), c = random(n, 13), d = random(n, 14);
+  const Pair x = random(n, 15), z0 = random(n, 16), z1 = random(n, 17);
+  // Z[i] = a X[i] + b Y[i], Z[0] aliasing X[0] and Z[1] aliasing Y[1]
+  N_Vector Xp[2] = {a.plain, b.plain}, Yp[2] = {c.plain, d.plain}, Zp[2] = {a.plain, d.plain};
+  N_Vector Xf[2] = {a.fast, b.fast}, Yf[2] = {c.fast, d.fast}, Zf[2] = {a.fast, d.fast};
+  N_VLinearSumVectorArray(2, 0.7, Xp, -1.3, Yp, Zp);
+  N_VLinearSumVectorArray(2, 0.7, Xf, -1.3, Yf, Zf);
+  EXPECT_LT(max_diff(a.plain, a.fast), 1e-15);
+  EXPECT_LT(max_diff(d.plain, d.fast), 1e-15);
+  // Z[i] = s[i] x + Y[i], Z[1] aliasing Y[1]
+  realtype s[2] = {2.0, -0.25};
+  N_Vector Yp2[2] = {b.plain, c.plain}, Zp2[2] = {z0.plain, c.plain};
+  N_Vector Yf2[2] = {b.fast, c.fast}, Zf2[2] = {z0.fast, c.fast};
+  N_VScaleAddMulti(2, s, x.plain, Yp2, Zp2);
+  N_VScaleAddMulti(2, s, x.fast, Yf2, Zf2);
+  EXPECT_LT(max_diff(z0.plain, z0.fast), 1e-15);
+  EXPECT_LT(max_diff(c.plain, c.fast), 1e-15);
+  EXPECT_GT(max_diff(z0.fast, z1.fast), 0.0);  // z0 was written
 }
 
 TEST_F(FastNVector, LinearCombinationsMatchTheLibrary) {
