@@ -341,7 +341,7 @@ double JournalBearing::peak_pressure(const V2& e, const V2& ed, double om) const
     return W.dot(u) / (h * h * h);
   };
   // Coarse scan (the unit vector turned by dphi each point: one sine and
-  // cosine for the scan), then golden-section search in the best bracket.
+  // cosine for the scan), then Newton in the best bracket.
   const int n = 64;
   const double dphi = M_PI / n;
   const double cr = std::cos(dphi), sr = std::sin(dphi);
@@ -354,20 +354,39 @@ double JournalBearing::peak_pressure(const V2& e, const V2& ed, double om) const
     if (v > qbest) qbest = v, best = i;
     u = V2(cr * u.x() - sr * u.y(), sr * u.x() + cr * u.y());
   }
+  // Safeguarded Newton on dq/dphi = 0 in the bracket around the best point,
+  // with u' = perp(u), u'' = -u:  N = W.u, h = c - e.u,
+  //   q' = N' / h^3 - 3 N h' / h^4,
+  //   q'' = -N / h^3 - 6 N' h' / h^4 + 12 N h'^2 / h^5 - 3 N h'' / h^4,
+  // N' = W.u', h' = -e.u', h'' = e.u. A step leaving the bracket, or taken
+  // where q is not concave, bisects instead.
   double lo = phiW - 0.5 * M_PI + (best - 1) * dphi, hi = lo + 2.0 * dphi;
-  const double g = 0.5 * (std::sqrt(5.0) - 1.0);
-  double x1 = hi - g * (hi - lo), x2 = lo + g * (hi - lo), f1 = q(x1), f2 = q(x2);
-  // 36 iterations shrink the 2 pi / 64 bracket to 3e-9 rad; q is flat at its
-  // maximum, so the peak is then exact to rounding.
-  for (int it = 0; it < 36; ++it) {
-    if (f1 > f2) {
-      hi = x2, x2 = x1, f2 = f1, x1 = hi - g * (hi - lo), f1 = q(x1);
-    } else {
-      lo = x1, x1 = x2, f1 = f2, x2 = lo + g * (hi - lo), f2 = q(x2);
+  double phi = lo + dphi, qpeak = qbest;
+  for (int it = 0; it < 40; ++it) {
+    const V2 uu(std::cos(phi), std::sin(phi)), up(-uu.y(), uu.x());
+    const double N = W.dot(uu), Np = W.dot(up);
+    const double h = c - e.dot(uu), hp = -e.dot(up), hpp = e.dot(uu);
+    const double h3 = h * h * h, h4 = h3 * h;
+    qpeak = std::max(qpeak, N / h3);
+    const double d1 = Np / h3 - 3.0 * N * hp / h4;
+    const double d2 =
+        -N / h3 - 6.0 * Np * hp / h4 + 12.0 * N * hp * hp / (h4 * h) - 3.0 * N * hpp / h4;
+    if (d1 > 0.0)
+      lo = phi;
+    else
+      hi = phi;
+    double next = d2 < 0.0 ? phi - d1 / d2 : 0.5 * (lo + hi);
+    if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
+    // q is flat at its maximum: a step of 1e-10 rad leaves q exact to rounding
+    if (std::abs(next - phi) < 1e-10 || hi - lo < 1e-10) {
+      phi = next;
+      break;
     }
+    phi = next;
   }
+  qpeak = std::max(qpeak, q(phi));
   // p = 6 eta x (B - x) q, largest at the mid-plane x = B/2.
-  return 1.5 * p_.viscosity * p_.width * p_.width * std::max({qbest, f1, f2});
+  return 1.5 * p_.viscosity * p_.width * p_.width * qpeak;
 }
 
 std::vector<Channel> JournalBearing::channels() const {

@@ -654,6 +654,22 @@ TEST(JournalBearing, RigidRotorWhirl) {
   }
 }
 
+// Largest p = 6 eta x (B - x) (W . u) / h^3 at the mid-plane over `points`
+// angles around the bearing (short-bearing pressure, the reference of the
+// peak-pressure channel).
+namespace {
+double brute_force_peak(const JournalBearingParams& p, const V2& e, const V2& W, int points) {
+  double pmax = 0.0;
+  for (int i = 0; i < points; ++i) {
+    const double phi = 2 * M_PI * i / points;
+    const V2 u(std::cos(phi), std::sin(phi));
+    const double h = p.clearance - e.dot(u);
+    pmax = std::max(pmax, 1.5 * p.viscosity * p.width * p.width * W.dot(u) / (h * h * h));
+  }
+  return pmax;
+}
+}  // namespace
+
 // Output channels: bearing-frame force, eps, attitude, minimum film, peak pressure
 // (checked against a brute-force scan of p = 6 eta x (B - x) (W . u) / h^3).
 TEST(JournalBearing, Channels) {
@@ -677,16 +693,38 @@ TEST(JournalBearing, Channels) {
   EXPECT_NEAR(ch[5], std::atan2(-0.6, 0.3), 1e-12);
   EXPECT_NEAR(ch[6], c * (1 - eps), 1e-12 * c);
   const V2 e(0.3 * c, -0.6 * c), W = V2(0.01, 0.02) - 0.5 * om * V2(0.6 * c, 0.3 * c);
-  double pmax = 0.0;
-  for (int i = 0; i < 200000; ++i) {
-    const double phi = 2 * M_PI * i / 200000.0;
-    const V2 u(std::cos(phi), std::sin(phi));
-    const double h = c - e.dot(u);
-    pmax = std::max(pmax, 1.5 * p.viscosity * p.width * p.width * W.dot(u) / (h * h * h));
-  }
+  const double pmax = brute_force_peak(p, e, W, 200000);
   std::printf("peak pressure %.6e Pa (scan %.6e Pa)\n", ch[7], pmax);
   EXPECT_NEAR(ch[7], pmax, 1e-6 * pmax);
   EXPECT_GE(ch[7], pmax);
+}
+
+// The peak pressure (coarse scan, then safeguarded Newton on dq/dphi) against a
+// brute-force scan over eccentricities up to 0.97, where the peak is sharp, and
+// squeeze velocities that move it around the bearing.
+TEST(JournalBearing, PeakPressureMatchesBruteForceScan) {
+  const JournalBearingParams p = base_params(false);
+  const JournalBearing jb = make_bearing(p);
+  const double c = p.clearance, om = 400.0;
+  std::vector<double> ch(jb.channels().size());
+  int cases = 0;
+  for (double eps : {0.05, 0.5, 0.9, 0.97})
+    for (double dir : {0.0, 2.0, 4.0})
+      for (double sq : {0.0, 0.05, -0.2}) {
+        MarkerMotion m[2];
+        const V2 e = eps * c * V2(std::cos(dir), std::sin(dir));
+        const V2 ed = sq * V2(std::cos(dir + 1.0), std::sin(dir + 1.0));
+        m[1].p = Vec3(e.x(), e.y(), 0.0);
+        m[1].v = Vec3(ed.x(), ed.y(), 0.0);
+        m[1].w = Vec3(0, 0, om);
+        jb.channel_values(0, m, ch.data());
+        const V2 W = ed - 0.5 * om * V2(-e.y(), e.x());
+        const double pmax = brute_force_peak(p, e, W, 400000);
+        EXPECT_NEAR(ch[7], pmax, 1e-6 * pmax) << "eps " << eps << " dir " << dir << " sq " << sq;
+        EXPECT_GE(ch[7], pmax * (1.0 - 1e-12)) << "eps " << eps << " dir " << dir << " sq " << sq;
+        ++cases;
+      }
+  EXPECT_EQ(cases, 36);
 }
 
 // A journal spinning about an axis far from the bearing axis (wrongly oriented
