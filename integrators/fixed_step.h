@@ -112,7 +112,9 @@ class FixedStepIntegrator : public Integrator {
       if (stop < t_end + snap) t_end = stop;
       if (t_end > tout - snap && (land || t_end < tout + snap)) t_end = tout;
       h = t_end - t_;
-      const bool cut = h < h_plan;
+      // shortened for a stop or an output (not by the round-off of t_end - t_,
+      // which left an adaptive step stuck at a small size: it never grew)
+      const bool cut = h < h_plan - snap;
       if (!adaptive) {
         take_interval(h);
         continue;
