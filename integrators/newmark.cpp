@@ -45,6 +45,7 @@ void NewmarkIntegrator::setup() {
   kb_last_ = Vec::Zero(K_.nonZeros());
   cb_last_ = Vec::Zero(C_.nonZeros());
   R_.resize(n_);
+  f_prev_ = Vec::Zero(n_);
   delta_.resize(n_);
   if (it_ == Iteration::Anderson) {
     dG_.resize(n_, s_.anderson_depth);
@@ -285,8 +286,26 @@ bool NewmarkIntegrator::fail(const std::string& why, double t1, double h, int it
   return false;
 }
 
+double NewmarkIntegrator::velocity_error_coefficient(const Parameters& par) {
+  const double am = par.alpha_m, af = par.alpha_f, d = am - af;
+  const double kappa = 0.5 * (1.0 - af) - (1.0 - am) * (d + 0.5);
+  return kappa + par.gamma * (0.5 + d) - 1.0 / 6.0;
+}
+
+void NewmarkIntegrator::accepted() {
+  f_prev_ = f1_;  // after the swap: the force at the start of the step just taken
+}
+
 void NewmarkIntegrator::local_error(double h, bool hist, Vec& eq, Vec& ev) const {
   estimate_local_error(par_, h, hist, h_prev_, a_, a1_, a_prev_, eq, ev);
+  const double am = par_.alpha_m, af = par_.alpha_f;
+  if ((am == 0.0 && af == 0.0) || !hist) return;
+  // generalized-alpha: the velocity error is of third order, c_v h^3 q(4)
+  // (see newmark.h), q(4) from the divided difference of the physical
+  // accelerations -f over the last three steps
+  const double cv = velocity_error_coefficient(par_);
+  const double hp = h_prev_;
+  ev = ((f_ - f1_) / h - (f_prev_ - f_) / hp) * (2.0 / (h + hp) * cv * h * h * h);
 }
 
 void NewmarkIntegrator::estimate_local_error(const Parameters& par, double h, bool hist, double hp,

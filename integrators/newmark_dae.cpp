@@ -58,6 +58,7 @@ void NewmarkDaeIntegrator::start_acceleration() {
 }
 
 void NewmarkDaeIntegrator::accepted() {
+  NewmarkIntegrator::accepted();
   if (!dae_) return;
   aa_.swap(aa1_);
   lam_prev_ = lam_;

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "integrators/integrator.h"
+#include "integrators/newmark.h"
 #include "sdof_problem.h"
 
 namespace evas {
@@ -425,6 +426,63 @@ TEST(SdofNewmark, AdaptiveStepGrowsBackAfterACut) {
     EXPECT_LT(one.steps, 260) << name;
     EXPECT_LT(plain.steps, one.steps + 20) << name;
     EXPECT_LT(refused.steps, one.steps + 20) << name;
+  }
+}
+
+// The coefficient c_v of the local velocity error c_v h^3 q'''' that the
+// adaptive step control of the Newmark family uses (integrators/newmark.h),
+// against the error the methods make: on q'' = F cos(W t) (f independent of
+// q), the velocity increment of a step after the start-up transient has
+// died out, minus the exact one, divided by h^3 q''''(t_n) = -h^3 F W^2 cos(W t_n).
+// Parameters from rho_inf as Chung & Hulbert, J. Appl. Mech. 60 (1993) 371.
+TEST(SdofNewmark, VelocityErrorCoefficientMatchesTheMethod) {
+  Oscillator o;
+  o.omega = 0.0;
+  o.force = 2.0;
+  o.force_freq = 3.0;
+  const double h = 1e-3, F = o.force, W = o.force_freq;
+  for (double rho : {0.8, 0.5, 1.0, -1.0}) {  // -1: linear acceleration
+    IntegratorSettings s;
+    s.name = rho < 0 ? "linear-acceleration" : "generalized-alpha";
+    s.step = h;
+    s.step_control = "fixed";
+    s.iteration = "effective-mass";
+    s.rtol = 1e-14;
+    s.atol = 1e-14;
+    s.balance_tol = 1e-14;
+    NewmarkIntegrator::Parameters par;
+    if (rho >= 0) {
+      s.rho_inf = rho;
+      par.alpha_m = (2 * rho - 1) / (rho + 1);
+      par.alpha_f = rho / (rho + 1);
+      par.gamma = 0.5 - par.alpha_m + par.alpha_f;
+      par.beta = 0.25 * (1 - par.alpha_m + par.alpha_f) * (1 - par.alpha_m + par.alpha_f);
+    }
+    const double cv = NewmarkIntegrator::velocity_error_coefficient(par);
+    SdofProblem p({o});
+    auto integ = make_integrator(s.name);
+    Vec q0, v0;
+    p.initial_state(q0, v0);
+    integ->init(p, 0.0, q0, v0, s);
+    std::vector<double> outputs, vs;
+    for (int k = 1; k <= 1000; ++k) outputs.push_back(k * h);
+    integrate(*integ, p, 0.0, outputs,
+              [&](double, const Vec&, const Vec& v) { vs.push_back(v[0]); });
+    ASSERT_EQ(vs.size(), outputs.size());
+    double worst = 0.0;
+    int checked = 0;
+    for (int k = 300; k < 999; ++k) {
+      const double t0 = outputs[k], t1 = outputs[k + 1];
+      const double q4 = -F * W * W * std::cos(W * t0);
+      if (std::abs(std::cos(W * t0)) < 0.3) continue;
+      const double dv = (vs[k + 1] - vs[k]) - F / W * (std::sin(W * t1) - std::sin(W * t0));
+      worst = std::max(worst, std::abs(dv / (h * h * h * q4) / cv - 1.0));
+      ++checked;
+    }
+    std::cout << s.name << " rho_inf " << rho << ": c_v " << cv << ", largest relative deviation "
+              << worst << " over " << checked << " steps\n";
+    EXPECT_GT(checked, 300);
+    EXPECT_LT(worst, 0.02) << s.name << " rho_inf " << rho;
   }
 }
 
