@@ -197,7 +197,7 @@ inline std::string engine_table(const std::string& path) {
         "| us per step / 2026-11-24 | error of the largest load | error per channel |\n"
         "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
   prof << "| case | integrator, linear solver | rtol | residuals | Jacobians | factorizations | "
-          "solves | rest (integrator, outputs) |\n|---|---|---:|---:|---:|---:|---:|---:|\n";
+          "solves | rest |\n|---|---|---:|---:|---:|---:|---:|---:|\n";
   side << "| case | rtol | us per step, KLU | us per step, second-order | KLU / second-order | "
           "2026-11-24 / second-order |\n|---|---:|---:|---:|---:|---:|\n";
   std::ostringstream units;
@@ -287,7 +287,9 @@ inline std::string engine_table(const std::string& path) {
          units.str() +
          "\nProfile: counts x unit costs as a share of the wall time (KLU factorizations "
          "counted as full factorizations, an upper bound when IDA's KLU module "
-         "refactorizes):\n\n" +
+         "refactorizes). Rest: the integrator's own work, the outputs, and what the "
+         "run's calls cost above the unit costs of the initial state (a solve costs "
+         "about 2.1 us in the run; a call-graph profile is in docs/engine-speed.md):\n\n" +
          prof.str();
 }
 
