@@ -220,5 +220,30 @@ class MassSdof : public test::SdofProblem {
   SpMat mass_;
 };
 
+// An SdofProblem whose model refuses the first `times` trial states past
+// t_refuse, as a film that closes on a Newton iterate: a RangeError (the
+// integrator cuts the step or retries), or with `fatal` a plain RunError (the
+// run ends).
+class RefusingSdof : public SdofProblem {
+ public:
+  RefusingSdof(std::vector<Oscillator> osc, double t_refuse, int times = 1, bool fatal = false)
+      : SdofProblem(std::move(osc)), t_refuse_(t_refuse), left_(times), fatal_(fatal) {}
+  void force(double t, const double* q, const double* v, double* f) override {
+    if (left_ > 0 && t > t_refuse_) {
+      refused = true;
+      --left_;
+      if (fatal_) throw RunError("element 'film': broken");
+      throw RangeError("element 'film': film closed on a trial state");
+    }
+    SdofProblem::force(t, q, v, f);
+  }
+  bool refused = false;
+
+ private:
+  double t_refuse_;
+  int left_;
+  bool fatal_;
+};
+
 }  // namespace test
 }  // namespace evas

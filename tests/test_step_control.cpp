@@ -169,27 +169,6 @@ TEST(StepControl, AdaptiveStepsFollowTheTolerance) {
   }
 }
 
-// A model that refuses the first trial state past t_trap (as a film that
-// closes on a Newton iterate), with a RangeError or, `fatal`, a plain RunError.
-class Refusing : public SdofProblem {
- public:
-  Refusing(double t_trap, bool fatal)
-      : SdofProblem(oscillators(), true), t_trap_(t_trap), fatal_(fatal) {}
-  void force(double t, const double* q, const double* v, double* f) override {
-    if (t > t_trap_ && !refused) {
-      refused = true;
-      if (fatal_) throw RunError("element 'film': broken");
-      throw RangeError("element 'film': film closed on a trial state");
-    }
-    SdofProblem::force(t, q, v, f);
-  }
-  bool refused = false;
-
- private:
-  double t_trap_;
-  bool fatal_;
-};
-
 TEST(RecoverableErrors, EveryIntegratorCutsTheStepAndGoesOn) {
   for (const char* name : {"ida", "cvode", "generalized-alpha", "linear-acceleration"}) {
     IntegratorSettings s;
@@ -199,7 +178,7 @@ TEST(RecoverableErrors, EveryIntegratorCutsTheStepAndGoesOn) {
     s.step = 1e-3;
     s.iteration = "effective-mass";
     s.balance_tol = 1e-10;
-    Refusing p(0.3, false);
+    test::RefusingSdof p(oscillators(), 0.3);
     const RunResult r = run(s, p, p, 1.0);
     std::cout << name << ": refused once, error " << r.err << ", substeps " << r.stats.substeps
               << "\n";
@@ -212,7 +191,7 @@ TEST(RecoverableErrors, OtherErrorsStillEndTheRun) {
   for (const char* name : {"ida", "cvode"}) {
     IntegratorSettings s;
     s.name = name;
-    Refusing p(0.3, true);
+    test::RefusingSdof p(oscillators(), 0.3, 1, true);
     try {
       run(s, p, p, 1.0);
       FAIL() << name << ": expected RunError";
