@@ -37,16 +37,21 @@ M2 J2() {
   return J;
 }
 
-// Sommerfeld substitution for 1 + eps cos(delta) = (1 - eps^2) / (1 - eps cos(psi)).
+// Sommerfeld substitution for 1 + eps cos(delta) = (1 - eps^2) / (1 - eps cos(psi)),
+// psi(delta) = 2 atan(k tan(delta / 2)), k = sqrt((1 - eps) / (1 + eps)), in its form
+// without a branch jump at delta = pi: psi = delta - 2 atan(x),
+// x = (1 - k) sin(delta) / ((1 + k) + (1 - k) cos(delta)).
 struct Somm {
-  double psi, C, S;  // psi(delta) continuous, cos psi, sin psi
+  double psi, C, S;  // psi(delta) (up to a constant shared by both limits), cos psi, sin psi
+  double x;          // x above
 };
-Somm sommerfeld(double delta, double eps) {
+// From cos(delta) = cd and sin(delta) = sd; psi left 0 (the caller sets the
+// difference of the two limits: the antiderivatives below are linear in psi).
+Somm sommerfeld(double cd, double sd, double eps) {
   const double k = std::sqrt((1.0 - eps) / (1.0 + eps));
-  const double cd = std::cos(delta), sd = std::sin(delta);
   Somm r;
-  // Continuous form of 2 atan(k tan(delta/2)) (no branch jump at delta = pi).
-  r.psi = delta - 2.0 * std::atan((1.0 - k) * sd / ((1.0 + k) + (1.0 - k) * cd));
+  r.psi = 0.0;
+  r.x = (1.0 - k) * sd / ((1.0 + k) + (1.0 - k) * cd);
   const double den = 1.0 + eps * cd;
   r.C = (cd + eps) / den;
   r.S = std::sqrt(1.0 - eps * eps) * sd / den;
@@ -68,7 +73,7 @@ double anti(int a, int b, const Somm& z, double e) {
       return S - S * S * S / 3.0 - 3.0 * e * (0.5 * p + 0.5 * S * C) + 3.0 * e * e * S -
              e * e * e * p;
     case 2:
-      return -std::pow(C - e, 3) / 3.0;
+      return -(C - e) * (C - e) * (C - e) / 3.0;
     case 1:
       return S * S * S / 3.0 - e * (0.5 * p - 0.5 * S * C);
     default:
@@ -124,7 +129,7 @@ JournalBearing::JournalBearing(std::string name, std::vector<int> markers,
 FilmForce JournalBearing::hydro(const V2& e, const V2& ed, double om, double weight, bool derivs,
                                 bool closed_form) const {
   const double c = p_.clearance;
-  const double K = p_.viscosity * p_.radius * std::pow(p_.width, 3) * weight;
+  const double K = p_.viscosity * p_.radius * (p_.width * p_.width * p_.width) * weight;
   const V2 W = ed - 0.5 * om * perp(e);
   FilmForce r;
   M2 M3 = M2::Zero();   // int u u^T / h^3 over the positive half circle
@@ -136,8 +141,14 @@ FilmForce JournalBearing::hydro(const V2& e, const V2& ed, double om, double wei
     Q.col(0) = a1;
     Q.col(1) = perp(a1);
     const V2 Wl = Q.transpose() * W;
-    const double dW = std::atan2(Wl.y(), Wl.x());
-    const Somm lo = sommerfeld(dW - 0.5 * M_PI, eps), hi = sommerfeld(dW + 0.5 * M_PI, eps);
+    // limits delta = dW -+ pi/2, dW the direction of W: cos and sin of both from
+    // W itself, and psi(hi) - psi(lo) = pi - 2 (atan x_hi - atan x_lo), the
+    // difference of the arc tangents (each in (-pi/2, pi/2)) by one atan2
+    const double wn = Wl.norm();
+    const double cW = wn > 0.0 ? Wl.x() / wn : 1.0, sW = wn > 0.0 ? Wl.y() / wn : 0.0;
+    const Somm lo = sommerfeld(sW, -cW, eps);
+    Somm hi = sommerfeld(-sW, cW, eps);
+    hi.psi = M_PI - 2.0 * std::atan2(hi.x - lo.x, 1.0 + hi.x * lo.x);
     const double s = 1.0 - eps * eps;
     // s^(k/2) for the half-integer exponents (b + 1)/2 - n <= 0 below, without pow()
     const double root_s = std::sqrt(s), inv_s = 1.0 / s;
