@@ -28,8 +28,9 @@ Marker make_set_marker(const std::string& name, int body, const ModalBody& b,
   std::vector<double> w;
   double wsum = 0.0;
   Vec3 centroid = Vec3::Zero();
+  const std::vector<int> rows = b.node_indices(node_ids);
   for (std::size_t k = 0; k < node_ids.size(); ++k) {
-    idx.push_back(b.node_index(node_ids[k]));
+    idx.push_back(rows[k]);
     w.push_back(weights.empty() ? 1.0 : weights[k]);
     if (!(w.back() >= 0.0)) throw InputError("marker '" + name + "': negative weight");
     wsum += w.back();

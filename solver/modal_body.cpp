@@ -3,6 +3,7 @@
 #include <cmath>
 #include <iomanip>
 #include <sstream>
+#include <unordered_map>
 #include <unordered_set>
 
 #include "solver/invariants.h"
@@ -16,6 +17,30 @@ std::string ModalBody::label() const {
 int ModalBody::node_index(long id) const {
   for (std::size_t i = 0; i < node_ids.size(); ++i)
     if (node_ids[i] == id) return static_cast<int>(i);
+  missing_node(id);
+}
+
+std::vector<int> ModalBody::node_indices(const std::vector<long>& ids) const {
+  if (ids.size() < 8) {
+    std::vector<int> out;
+    for (long id : ids) out.push_back(node_index(id));
+    return out;
+  }
+  std::unordered_map<long, int> row;
+  row.reserve(node_ids.size());
+  for (std::size_t i = 0; i < node_ids.size(); ++i)
+    row.emplace(node_ids[i], static_cast<int>(i));  // the first of a repeated id, as node_index
+  std::vector<int> out;
+  out.reserve(ids.size());
+  for (long id : ids) {
+    const auto it = row.find(id);
+    if (it == row.end()) missing_node(id);
+    out.push_back(it->second);
+  }
+  return out;
+}
+
+void ModalBody::missing_node(long id) const {
   if (reduced())
     throw InputError(label() + ": no node with id " + std::to_string(id) +
                      "; the body is reduced (" + std::to_string(num_nodes()) + " of " +
