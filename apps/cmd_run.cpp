@@ -11,6 +11,7 @@
 #include "apps/commands.h"
 #include "apps/run_stop.h"
 #include "dae/consistent.h"
+#include "integrators/common.h"
 #include "integrators/integrator.h"
 #include "integrators/settings.h"
 #include "io/outputs.h"
@@ -239,7 +240,18 @@ int cmd_run(const std::vector<std::string>& args) {
       if (stop.due()) stop.stop(t, integ->stats().last_step);
       Vec lam;
       const bool with_lam = outputs.has_multiplier_channels() && integ->multipliers(lam);
-      outputs.values(t, q.data(), v.data(), row.data(), with_lam ? lam.data() : nullptr);
+      try {
+        outputs.values(t, q.data(), v.data(), row.data(), with_lam ? lam.data() : nullptr);
+      } catch (const RangeError& e) {
+        // the integrator took the steps, but the state at this output (a step's
+        // or the interpolant between two) is outside an element's range
+        throw RunError(std::string("the output channels at t = ") + format_number(t) +
+                       " s cannot be evaluated: " + e.what() +
+                       "; state: " + sys.describe_state(t, q.data(), v.data()) +
+                       ". The steps around this time passed the integrator's own tests; with a "
+                       "fixed step (generalized-alpha, linear-acceleration) a smaller 'step' or "
+                       "step_control=adaptive follows the motion more closely");
+      }
       check_finite(outputs, row, t, sys, q, v);
       writer.append(t, row);
       if (progress.due()) {

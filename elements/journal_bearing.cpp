@@ -266,8 +266,9 @@ void JournalBearing::evaluate(double t, const MarkerMotion* m, MarkerLoad* loads
         "journal bearing '" + name() + "': the journal spins about an axis " +
         std::to_string(std::asin(std::min(1.0, w_across / w_n)) * 180 / M_PI) +
         " deg off the bearing axis (the z axis of the bearing marker) at t = " + std::to_string(t) +
-        " s; give the bearing marker a rotation that turns its z axis onto the "
-        "crank axis");
+        " s. At the start this means a misoriented marker: give the bearing marker a rotation "
+        "that turns its z axis onto the crank axis; later in a run, the motion has left what "
+        "the film model describes (a diverging solution or too coarse a step)");
   }
   Vec3 F = Vec3::Zero(), M = Vec3::Zero();
   for (const auto& st : stations_) {

@@ -618,3 +618,31 @@ TEST(RunFaults, StudyStopsOnSigtermWithItsOutputs) {
   std::printf("[ measured ] evas study on SIGTERM: exit %d, stopped %.3f s after the signal\n",
               code, stop_seconds);
 }
+
+// A state at an output that an element refuses, although the steps around it
+// passed the integrator's tests: the paper's engine under generalized-alpha at
+// its default step (1e-4 s, ten times coarser than the engine needs) leaves
+// the film model's range at t = 0.0731 s in the interpolant between two
+// steps. The run fails (exit 2) naming the time, the element and the state,
+// and keeps the rows written before.
+TEST(RunFaults, OutputOutsideAnElementsRangeReportsTheState) {
+  TempFolder tmp;
+  const fs::path out = tmp.path() / "out";
+  const std::string scene =
+      (fs::path(EVAS_SOURCE_DIR) / "validation" / "engine" / "engine.yaml").string();
+  const Outcome o = run_evas({"run", scene, "--out", out.string(), "-q", "--t-end", "0.09", "--set",
+                              "name=generalized-alpha"},
+                             tmp.path() / "log");
+  EXPECT_EQ(o.code, 2) << o.log;
+  EXPECT_TRUE(contains(o.log, "the output channels at t = ")) << o.log;
+  EXPECT_TRUE(contains(o.log, "journal bearing '")) << o.log;
+  EXPECT_TRUE(contains(o.log, "body 'block': max|q| = ")) << o.log;
+  EXPECT_TRUE(contains(o.log, "a smaller 'step'")) << o.log;
+  const std::string json = read_text(out / "summary.json");
+  EXPECT_TRUE(contains(json, "\"status\": \"failed: the output channels")) << json;
+  const auto kept = read_results((out / "results.h5").string()).time;  // the run has ended
+  ASSERT_FALSE(kept.empty());
+  std::printf("[ measured ] rows kept: %zu, the last at t = %.6g s\n", kept.size(), kept.back());
+  EXPECT_GT(kept.size(), 1000u);  // measured 1316, up to t = 0.0730556 s
+  EXPECT_LT(kept.back(), 0.0732);
+}
