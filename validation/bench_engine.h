@@ -163,13 +163,15 @@ inline double channel_error(const study::RunData& d, const study::RunData& ref) 
 // stays below 1e-3 (of the largest load: rtol 1e-4; per channel: rtol 7e-5);
 // generalized-alpha (rho_inf 0.8, effective mass, the scene's rtol/atol for
 // its increment test) at steps of 1e-5 s and 8e-6 s (a step whose iteration
-// fails is taken as sub-steps)
+// fails is taken as sub-steps), and with adaptive steps (PI controller) at
+// rtol 3e-4, atol 3e-8 from a first step of 8e-6 s
 // (docs/engine-speed.md, "Settings").
 struct EngineRun {
   std::string solver;
   double rtol, atol;
   std::string name = "ida";
-  double step = 0.0;  // fixed step of generalized-alpha
+  double step = 0.0;  // fixed step of generalized-alpha (the first one when adaptive)
+  std::string control = "substep";
 };
 
 inline std::vector<EngineRun> engine_runs() {
@@ -180,11 +182,13 @@ inline std::vector<EngineRun> engine_runs() {
           {"second-order", 1e-4, 1e-8},
           {"second-order", 7e-5, 7e-9},
           {"second-order", 1e-5, 1e-9, "generalized-alpha", 1e-5},
-          {"second-order", 1e-5, 1e-9, "generalized-alpha", 8e-6}};
+          {"second-order", 1e-5, 1e-9, "generalized-alpha", 8e-6},
+          {"second-order", 3e-4, 3e-8, "generalized-alpha", 8e-6, "adaptive"}};
 }
 
 inline std::string run_label(const EngineRun& r) {
   if (r.name == "ida") return "ida, " + r.solver;
+  if (r.control == "adaptive") return r.name + ", adaptive";
   std::ostringstream o;
   o << r.name << ", h " << std::scientific << std::setprecision(0) << r.step;
   return o.str();
@@ -234,7 +238,8 @@ inline std::string engine_table(const std::string& path) {
       s.linear_solver = r.solver;
       s.rtol = r.rtol;
       s.atol = r.atol;
-      if (r.step > 0.0) s.step = r.step;  // the default step control: failed steps as sub-steps
+      if (r.step > 0.0) s.step = r.step;
+      s.step_control = r.control;  // substep: failed steps as sub-steps
       const bool so = r.solver == "second-order";
       const bool ida = r.name == "ida";
       const study::RunData d = study::run_case_repeated(c.src, s, channels, 2);
