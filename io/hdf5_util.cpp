@@ -337,14 +337,14 @@ std::vector<std::string> read_strings(hid_t loc, const std::string& name) {
 }
 
 Handle create_extendible(hid_t loc, const std::string& name, int rank, hsize_t cols,
-                         hsize_t chunk_rows) {
+                         hsize_t chunk_rows, bool compress) {
   hsize_t dims[2] = {0, cols};
   hsize_t maxdims[2] = {H5S_UNLIMITED, cols};
   hsize_t chunk[2] = {std::max<hsize_t>(1, chunk_rows), std::max<hsize_t>(1, cols)};
   Handle space(H5Screate_simple(rank, dims, maxdims), H5Sclose);
   Handle plist(H5Pcreate(H5P_DATASET_CREATE), H5Pclose);
   H5Pset_chunk(plist, rank, chunk);
-  if (deflate_available()) {
+  if (compress && deflate_available()) {
     H5Pset_shuffle(plist);
     H5Pset_deflate(plist, 4);
   }

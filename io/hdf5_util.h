@@ -92,10 +92,10 @@ std::vector<double> read_doubles(hid_t loc, const std::string& name, std::vector
 std::vector<long long> read_int64s(hid_t loc, const std::string& name, std::vector<hsize_t>& dims);
 std::vector<std::string> read_strings(hid_t loc, const std::string& name);
 
-/// Extendible, chunked, compressed dataset of doubles: dims {0} (rank 1) or
-/// {0, cols} (rank 2, cols >= 1).
+/// Extendible, chunked dataset of doubles: dims {0} (rank 1) or {0, cols}
+/// (rank 2, cols >= 1); with `compress`, shuffle + deflate (level 4).
 Handle create_extendible(hid_t loc, const std::string& name, int rank, hsize_t cols,
-                         hsize_t chunk_rows);
+                         hsize_t chunk_rows, bool compress);
 /// Appends `rows` rows (row-major; `cols` values each, 1 for a rank-1 dataset).
 void append_rows(hid_t dset, hsize_t cols, hsize_t rows, const double* data);
 /// Sets the extent to first + rows rows and writes rows [first, first + rows):

@@ -77,7 +77,7 @@ ResultsWriter::ResultsWriter(const std::string& path, std::vector<Channel> chann
     h5::write_attribute(file_, "integrator", opt_.integrator);
     h5::write_attribute(file_, "grid", opt_.grid);
     h5::write_attribute(file_, "status", std::string("running"));
-    time_ = h5::create_extendible(file_, "time", 1, 1, chunk);
+    time_ = h5::create_extendible(file_, "time", 1, 1, chunk, opt_.compress);
     h5::write_attribute(time_, "unit", std::string("s"));
     h5::Handle g = h5::create_group(file_, "channels");
     std::vector<std::string> names, units;
@@ -87,7 +87,7 @@ ResultsWriter::ResultsWriter(const std::string& path, std::vector<Channel> chann
     }
     h5::write_strings(g, "names", names);
     h5::write_strings(g, "units", units);
-    if (nc > 0) values_ = h5::create_extendible(g, "values", 2, nc, vchunk);
+    if (nc > 0) values_ = h5::create_extendible(g, "values", 2, nc, vchunk, opt_.compress);
     flush_file(file_);
   });
   if (!ok && !file_.valid()) throw RunError(broken_);  // not even created

@@ -70,6 +70,36 @@ TEST(Results, RoundTrip) {
   EXPECT_EQ(h5::read_double_attribute(g, "wall_seconds"), 0.5);
 }
 
+// The datasets are written without filters unless asked (Options::compress);
+// with it, shuffle + deflate where the HDF5 library has deflate. Either way the
+// values read back exactly.
+TEST(Results, CompressionOnlyWhenAsked) {
+  for (bool compress : {false, true}) {
+    const std::string path = tmp_path(compress ? "deflate.h5" : "plain.h5");
+    {
+      ResultsWriter::Options o = options(16);
+      o.compress = compress;
+      ResultsWriter w(path, two_channels(), o);
+      for (int i = 0; i < 40; ++i) w.append(1e-3 * i, {std::cos(0.3 * i), -2.0 * i});
+      w.finish(IntegratorStats{}, "completed");
+    }
+    const ResultsData d = read_results(path);
+    ASSERT_EQ(d.values.rows(), 40);
+    for (int i = 0; i < 40; ++i) EXPECT_EQ(d.values(i, 0), std::cos(0.3 * i)) << compress;
+    h5::Handle f(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose);
+    for (const char* name : {"/time", "/channels/values"}) {
+      h5::Handle ds(H5Dopen2(f, name, H5P_DEFAULT), H5Dclose);
+      h5::Handle pl(H5Dget_create_plist(ds), H5Pclose);
+      const int filters = H5Pget_nfilters(pl);
+      if (!compress) {
+        EXPECT_EQ(filters, 0) << name;
+      } else if (H5Zfilter_avail(H5Z_FILTER_DEFLATE) > 0) {
+        EXPECT_EQ(filters, 2) << name;  // shuffle, deflate
+      }
+    }
+  }
+}
+
 TEST(Results, PartialFileAfterFailure) {
   // The writer is destroyed without finish(): everything appended is readable
   // and the status says the run never completed.
