@@ -471,10 +471,35 @@ void plot_work_precision(const Options& opt, const WorkPrecisionResult& res, Stu
     fam[f].push_back(&r);
   }
   if (order.empty()) return;
+  // settings every curve shares (e.g. the scene's linear solver) go to the
+  // title, so that the legend stays short enough not to cover the curves
+  std::vector<std::string> common;
+  if (order.size() > 1) {
+    std::istringstream first(order.front());
+    std::string word;
+    first >> word;  // the integrator's name
+    while (first >> word) {
+      bool all = true;
+      for (const auto& f : order)
+        all = all && (" " + f + " ").find(" " + word + " ") != std::string::npos;
+      if (all) common.push_back(word);
+    }
+  }
+  std::vector<std::string> legend;
+  for (const auto& f : order) {
+    std::istringstream is(f);
+    std::string word, out;
+    while (is >> word)
+      if (std::find(common.begin(), common.end(), word) == common.end())
+        out += (out.empty() ? "" : " ") + word;
+    legend.push_back(out);
+  }
+  // one legend for both panels, in two columns below them
+  const int key_rows = static_cast<int>((order.size() + 1) / 2);
   const fs::path png = fs::path(info.out_dir) / "study.png";
   std::ostringstream gp;
   gp << "# work-precision figure of " << info.scene_name << " (evas study)\n"
-     << gp_terminal(png, 1400, 560);
+     << gp_terminal(png, 1400, 560 + 18 * key_rows);
   for (std::size_t i = 0; i < order.size(); ++i) {
     auto pts = fam[order[i]];
     std::sort(pts.begin(), pts.end(),
@@ -486,20 +511,22 @@ void plot_work_precision(const Options& opt, const WorkPrecisionResult& res, Stu
   }
   gp << "set multiplot layout 1,2 title "
      << gp_quote("work-precision: " + info.scene_name + " (" + info.window + ", norm " + info.norm +
-                 ")")
+                 ")" + (common.empty() ? "" : "; all curves: " + join(common, " ")))
      << "\n"
-     << "set logscale xy\nset format y '1e%L'\nset grid\nset key bottom left\n"
+     << "set logscale xy\nset format y '1e%L'\nset grid\nset bmargin " << key_rows + 5 << "\n"
+     << "set key at screen 0.02,screen 0.01 left bottom vertical maxrows " << key_rows
+     << " Left reverse samplen 2 width -4\n"
      << "set ylabel 'error (relative to each channel amplitude)'\n";
   auto curves = [&](const char* using_) {
     gp << "plot ";
     for (std::size_t i = 0; i < order.size(); ++i)
-      gp << (i ? ", " : "") << "$F" << i << " using " << using_ << " with linespoints pt 7 title "
-         << gp_quote(order[i]);
+      gp << (i ? ", " : "") << "$F" << i << " using " << using_ << " with linespoints pt "
+         << (i < 8 ? 7 : 5) << " title " << gp_quote(legend[i]);  // past 8 the colours repeat
     gp << "\n";
   };
   gp << "set xlabel 'wall time [s]'\n";
   curves("1:2");
-  gp << "set xlabel 'residual evaluations'\n";
+  gp << "set xlabel 'residual evaluations'\nunset key\n";
   curves("3:2");
   gp << "unset multiplot\n";
   plot(opt, fs::path(info.out_dir) / "study.gp", gp.str(), info, png);

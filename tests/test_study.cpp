@@ -398,6 +398,33 @@ TEST(StudyWorkPrecision, FailedCaseIsRecordedAndTheOthersHaveFiniteErrors) {
   EXPECT_LT(s, 20.0);
 }
 
+// The figure's legend leaves out the settings every curve shares (on the
+// paper's engine the scene's linear solver made every entry so long that the
+// legend covered the curves); the title names them once.
+TEST(StudyWorkPrecision, LegendLeavesOutSettingsEveryCurveShares) {
+  TempDir dir("wp_legend");
+  const std::string scene = dir.write("osc.yaml", oscillator_scene(0.05, 5e-4));
+  Options o = quiet_options(scene, dir.path() / "out");
+  o.reference = "ida rtol=1e-9 atol=1e-13";
+  o.plot = true;
+  const auto res = work_precision(
+      o, {{"ida rtol=1e-4,1e-6 max_steps=50000", ""}, {"cvode rtol=1e-5 max_steps=50000", ""}});
+  ASSERT_EQ(res.cases.size(), 3u);
+  std::ifstream in(dir.path() / "out" / "study.gp");
+  const std::string gp((std::istreambuf_iterator<char>(in)), {});
+  EXPECT_NE(gp.find("; all curves: max_steps=50000"), std::string::npos) << gp;
+  EXPECT_NE(gp.find("title 'ida'"), std::string::npos) << gp;
+  EXPECT_NE(gp.find("title 'cvode'"), std::string::npos) << gp;
+  std::istringstream lines(gp);
+  int plots = 0;
+  for (std::string line; std::getline(lines, line);)
+    if (line.rfind("plot ", 0) == 0) {
+      ++plots;
+      EXPECT_EQ(line.find("max_steps"), std::string::npos) << line;  // in no legend entry
+    }
+  EXPECT_EQ(plots, 2);
+}
+
 TEST(StudyWorkPrecision, BadInputIsReportedBeforeAnyRun) {
   TempDir dir("wp_bad");
   const std::string scene = dir.write("osc.yaml", oscillator_scene(0.01, 1e-3));
