@@ -10,6 +10,7 @@
 
 #include "apps/commands.h"
 #include "apps/run_stop.h"
+#include "apps/step_advice.h"
 #include "dae/consistent.h"
 #include "integrators/common.h"
 #include "integrators/integrator.h"
@@ -174,6 +175,8 @@ int cmd_run(const std::vector<std::string>& args) {
   // One run per folder: refuse before anything in it is touched.
   const RunLock lock(dir);
   if (!lock.note().empty()) std::cerr << "evas run: warning: " << lock.note() << "\n";
+  if (const std::string w = coarse_step_warning(*scene.model, set); !w.empty())
+    std::cerr << "evas run: warning: " << w << "\n";
   const RunStop stop(max_wall);  // signals from here on end the run in order
   const std::string h5path = (dir / "results.h5").string();
 
