@@ -19,6 +19,9 @@ shift 2
 cases=${*:-1 2}
 dir=$(cd "$(dirname "$0")" && pwd)
 evas=$build/evas
+# run from the project root with the scene given relative to it, so that the
+# tables it writes (and docs/work-precision/ keeps) name no machine's paths
+cd "$dir/../.."
 
 for c in $cases; do
   case $c in
@@ -28,7 +31,7 @@ for c in $cases; do
   esac
   echo "== engine case $c"
   # shellcheck disable=SC2086
-  "$evas" study work-precision "$dir/engine.yaml" $params --out "$out/case$c" \
+  "$evas" study work-precision validation/engine/engine.yaml $params --out "$out/case$c" \
     --channels 'main*.fx,main*.fy' --window last-cycles=1 --repeats 2 \
     --reference "ida rtol=1e-9 atol=1e-12" \
     --case "ida rtol=1e-3..1e-7/5" \
