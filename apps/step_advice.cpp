@@ -3,11 +3,12 @@
 #include <cmath>
 #include <sstream>
 
+#include "integrators/settings.h"
+
 namespace evas {
 
 std::string coarse_step_warning(const Model& model, const IntegratorSettings& s) {
-  if (s.name != "generalized-alpha" && s.name != "linear-acceleration") return "";
-  if (s.step_control == "adaptive" || !(s.step > 0.0)) return "";
+  if (!takes_fixed_steps(s) || !(s.step > 0.0)) return "";
   double lam = 0.0;
   std::string body;
   int mode = -1;

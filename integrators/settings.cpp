@@ -237,17 +237,21 @@ void apply_setting_assignment(IntegratorSettings& s, const std::string& assignme
   }
 }
 
+bool takes_fixed_steps(const IntegratorSettings& s) {
+  const bool newmark = s.name == "generalized-alpha" || s.name == "linear-acceleration";
+  return newmark && s.step_control != "adaptive";
+}
+
 std::string settings_label(const IntegratorSettings& s) {
   IntegratorSettings d;
   d.name = s.name;
   // the accuracy knob is always named, even at its default value
-  const bool newmark = s.name == "generalized-alpha" || s.name == "linear-acceleration";
-  const bool adaptive = !newmark || s.step_control == "adaptive";
+  const bool fixed = takes_fixed_steps(s);
   std::string out = s.name;
   for (const auto& e : table()) {
     const std::string& key = e.info.key;
     if (key == "name") continue;
-    const bool knob = (key == "rtol" && adaptive) || (key == "step" && newmark && !adaptive);
+    const bool knob = (key == "rtol" && !fixed) || (key == "step" && fixed);
     const std::string v = e.get(s);
     if (knob || v != e.get(d)) out += " " + key + "=" + v;
   }

@@ -21,11 +21,6 @@ int ModalBody::node_index(long id) const {
 }
 
 std::vector<int> ModalBody::node_indices(const std::vector<long>& ids) const {
-  if (ids.size() < 8) {
-    std::vector<int> out;
-    for (long id : ids) out.push_back(node_index(id));
-    return out;
-  }
   std::unordered_map<long, int> row;
   row.reserve(node_ids.size());
   for (std::size_t i = 0; i < node_ids.size(); ++i)

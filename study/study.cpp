@@ -473,7 +473,8 @@ void plot_work_precision(const Options& opt, const WorkPrecisionResult& res, Stu
   if (order.empty()) return;
   // settings every curve shares (e.g. the scene's linear solver) go to the
   // title, so that the legend stays short enough not to cover the curves
-  std::vector<std::string> common;
+  std::vector<std::string> common;  // "key=value" in every family
+  std::set<std::string> common_keys;
   if (order.size() > 1) {
     std::istringstream first(order.front());
     std::string word;
@@ -482,18 +483,14 @@ void plot_work_precision(const Options& opt, const WorkPrecisionResult& res, Stu
       bool all = true;
       for (const auto& f : order)
         all = all && (" " + f + " ").find(" " + word + " ") != std::string::npos;
-      if (all) common.push_back(word);
+      if (all) {
+        common.push_back(word);
+        common_keys.insert(word.substr(0, word.find('=')));
+      }
     }
   }
   std::vector<std::string> legend;
-  for (const auto& f : order) {
-    std::istringstream is(f);
-    std::string word, out;
-    while (is >> word)
-      if (std::find(common.begin(), common.end(), word) == common.end())
-        out += (out.empty() ? "" : " ") + word;
-    legend.push_back(out);
-  }
+  for (const auto& f : order) legend.push_back(strip_keys(f, common_keys));
   // one legend for both panels, in two columns below them
   const int key_rows = static_cast<int>((order.size() + 1) / 2);
   const fs::path png = fs::path(info.out_dir) / "study.png";
