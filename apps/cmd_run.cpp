@@ -108,10 +108,11 @@ int cmd_run(const std::vector<std::string>& args) {
       "options");
   opts.add_options()("help,h", "show this help")(
       "integrator", po::value<std::string>(),
-      "integrator: ida, cvode, generalized-alpha, linear-acceleration")(
+      "integrator: ida, cvode, generalized-alpha, linear-acceleration, radau")(
       "rtol", po::value<std::string>(), "relative tolerance (adaptive integrators)")(
       "atol", po::value<std::string>(), "absolute tolerance (adaptive integrators)")(
-      "step", po::value<std::string>(), "fixed step [s] (generalized-alpha, linear-acceleration)")(
+      "step", po::value<std::string>(),
+      "fixed step [s] (generalized-alpha, linear-acceleration, radau)")(
       "set,s", po::value<std::vector<std::string>>()->composing(),
       "KEY=VALUE: any integrator setting, repeatable (see --help-settings); applied after "
       "the scene's integrator block and the options above")(

@@ -275,8 +275,8 @@ int convergence(const std::vector<std::string>& args) {
 int stability(const std::vector<std::string>& args) {
   po::options_description opts(
       "usage: evas study stability SCENE.yaml --case SPEC --step-range HMIN:HMAX [options]\n\n"
-      "Finds the largest fixed step h in [HMIN, HMAX] at which one case (generalized-alpha or\n"
-      "linear-acceleration; its own step is ignored) completes and stays stable: for\n"
+      "Finds the largest fixed step h in [HMIN, HMAX] at which one case (generalized-alpha,\n"
+      "linear-acceleration or radau; its own step is ignored) completes and stays stable: for\n"
       "every selected channel, max |y| over the run (after the first output) is at most\n"
       "--growth times the reference run's. HMAX is tried first (\"stable up to HMAX\"),\n"
       "then HMIN (\"unstable at HMIN\" if not), then --bisections bisections in log h.\n"

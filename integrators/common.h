@@ -16,6 +16,7 @@ namespace evas {
 std::unique_ptr<Integrator> make_ida_integrator();
 std::unique_ptr<Integrator> make_cvode_integrator();
 std::unique_ptr<Integrator> make_generalized_alpha_integrator();
+std::unique_ptr<Integrator> make_radau_integrator();
 std::unique_ptr<Integrator> make_linear_acceleration_integrator();
 
 /// Track the smallest and largest accepted step.

@@ -23,13 +23,12 @@
 //             derived class) is measured in the weighted RMS norm of SUNDIALS,
 //             w_i = 1 / (rtol |y_i| + atol) over q and v; the step is accepted
 //             when ||e_n|| <= 1. The next step is the PI controller's
-//             h * clamp(0.9 ||e_n||^(-0.7/k) ||e_{n-1}||^(0.4/k), 0.2, 2), k = 3
-//             (local error O(h^3) for both methods; Gustafsson, Lundh & Soederlind,
-//             BIT 28 (1988) 270-287; Hairer, Noersett & Wanner, Solving ODEs I,
-//             2nd ed., section II.4), ||e_{n-1}|| floored at 1e-4; on the first step
-//             after a start, and for a rejected step (stats.error_test_failures,
-//             retried), the I controller's 0.9 ||e||^(-1/k); the step after a
-//             rejection does not grow. A step whose iteration fails
+//             h * clamp(0.9 ||e_n||^(-0.7/k) ||e_{n-1}||^(0.4/k), 0.2, 2), k =
+//             error_order() (3 for the Newmark family: local error O(h^3); Gustafsson, Lundh &
+//             Soederlind, BIT 28 (1988) 270-287; Hairer, Noersett & Wanner, Solving ODEs I, 2nd
+//             ed., section II.4), ||e_{n-1}|| floored at 1e-4; on the first step after a start, and
+//             for a rejected step (stats.error_test_failures, retried), the I controller's 0.9
+//             ||e||^(-1/k); the step after a rejection does not grow. A step whose iteration fails
 //             (stats.convergence_failures) is retried with h / 4. Bounded by
 //             settings.min_step (failure) and settings.max_step. On the paper's
 //             engine the I controller alone rejected 12 % of the steps (the
@@ -140,8 +139,9 @@ class FixedStepIntegrator : public Integrator {
         continue;
       }
       const double err = weighted_norm(h);
+      const double k = error_order();
       double fac = std::isfinite(err) && err > 0.0
-                       ? std::clamp(0.9 * std::pow(err, -1.0 / 3.0), 0.2, 2.0)
+                       ? std::clamp(0.9 * std::pow(err, -1.0 / k), 0.2, 2.0)
                        : (err == 0.0 ? 2.0 : 0.2);
       if (!(err <= 1.0)) {
         ++stats_.error_test_failures;
@@ -151,15 +151,14 @@ class FixedStepIntegrator : public Integrator {
         continue;
       }
       if (err > 0.0 && err_prev_ > 0.0)  // PI: the last accepted error damps the change
-        fac =
-            std::clamp(0.9 * std::pow(err, -0.7 / 3.0) * std::pow(err_prev_, 0.4 / 3.0), 0.2, 2.0);
+        fac = std::clamp(0.9 * std::pow(err, -0.7 / k) * std::pow(err_prev_, 0.4 / k), 0.2, 2.0);
       if (rejected_) fac = std::min(fac, 1.0);
       rejected_ = false;
       err_prev_ = std::max(err, 1e-4);
       accept(h);
       // a step cut short for a stop or an output says little about the next one:
       // keep the planned step unless the error asks for a smaller one
-      const double h_next = cut ? std::min(h_, h * fac) : h * fac;
+      const double h_next = keep_step(h, cut ? std::min(h_, h * fac) : h * fac);
       h_ = s_.max_step > 0.0 ? std::min(h_next, s_.max_step) : h_next;
       h_ = std::max(h_, s_.min_step);
     }
@@ -227,6 +226,27 @@ class FixedStepIntegrator : public Integrator {
   bool has_history() const { return have_prev_; }
   /// Time of the last output handed back by advance().
   double last_output_time() const { return tout_last_; }
+  /// Order k of the local error estimate, e = O(h^k): the step controller's
+  /// exponents are 1/k (I) and 0.7/k, 0.4/k (PI).
+  virtual int error_order() const { return 3; }
+  /// The next step the adaptive control takes after an accepted step of h, given
+  /// the controller's proposal (default: the proposal).
+  virtual double keep_step(double h, double proposal) const {
+    (void)h;
+    return proposal;
+  }
+  /// The state at t_prev_ < t < t_: the cubic Hermite interpolant of the last step.
+  virtual void interpolate(double t, Vec& q, Vec& v) const {
+    const double h = t_ - t_prev_;
+    const double s = (t - t_prev_) / h;
+    const double s2 = s * s, s3 = s2 * s;
+    const double h00 = 2 * s3 - 3 * s2 + 1, h10 = s3 - 2 * s2 + s;
+    const double h01 = -2 * s3 + 3 * s2, h11 = s3 - s2;
+    // previous state lives in the *1_ vectors after the swap in accept()
+    q = h00 * q1_ + h10 * h * v1_ + h01 * q_ + h11 * h * v_;
+    v = h00 * v1_ + h10 * h * a1_ + h01 * v_ + h11 * h * a_;
+  }
+
   double previous_time() const { return t_prev_; }
 
   /// "time, step, state" tail of a failure message.
@@ -325,17 +345,6 @@ class FixedStepIntegrator : public Integrator {
       sum += eq_[i] * eq_[i] * wq * wq + ev_[i] * ev_[i] * wv * wv;
     }
     return std::sqrt(sum / (2.0 * n_));
-  }
-
-  void interpolate(double t, Vec& q, Vec& v) const {
-    const double h = t_ - t_prev_;
-    const double s = (t - t_prev_) / h;
-    const double s2 = s * s, s3 = s2 * s;
-    const double h00 = 2 * s3 - 3 * s2 + 1, h10 = s3 - 2 * s2 + s;
-    const double h01 = -2 * s3 + 3 * s2, h11 = s3 - s2;
-    // previous state lives in the *1_ vectors after the swap in accept()
-    q = h00 * q1_ + h10 * h * v1_ + h01 * q_ + h11 * h * v_;
-    v = h00 * v1_ + h10 * h * a1_ + h01 * v_ + h11 * h * a_;
   }
 
   double t_prev_ = 0.0;

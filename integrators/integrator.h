@@ -5,7 +5,9 @@
 //   linear-acceleration  the paper's method: Newmark beta = 1/6, gamma = 1/2, iterated
 //                        until the balance error of Eq. 1 is <= balance_tol (by the
 //                        paper's fixed point, or Anderson, effective-mass or Newton)
-// The two Newmark-family methods step with a fixed step (cut into sub-steps where
+//   radau                Radau IIA, 3 stages, order 5, on the second-order form
+//                        (simplified Newton on one real and one complex n x n matrix)
+// The two Newmark-family methods and radau step with a fixed step (cut into sub-steps where
 // the iteration fails) or adaptively against rtol/atol (settings.step_control).
 // All see the model only through Problem (solver/problem.h). Every setting is
 // declared once in integrators/settings.cpp.
@@ -131,7 +133,7 @@ class Integrator {
   StepMonitor monitor_;
 };
 
-/// Names accepted by make_integrator: the built-in four, then those registered.
+/// Names accepted by make_integrator: the built-in five, then those registered.
 std::vector<std::string> integrator_names();
 /// Makes a new integrator (one per run).
 using IntegratorFactory = std::function<std::unique_ptr<Integrator>()>;

@@ -1,5 +1,5 @@
 // make_integrator / integrator_names / register_integrator: the integrators by
-// name (integrator.h). The four built-in ones are registered first; plug-ins
+// name (integrator.h). The five built-in ones are registered first; plug-ins
 // (integrators/plugin.h) add theirs at load time.
 #include <mutex>
 #include <string>
@@ -26,6 +26,8 @@ std::vector<Entry>& registry() {
        "generalised-alpha (Chung-Hulbert 1993) on the second-order form"},
       {"linear-acceleration", &make_linear_acceleration_integrator,
        "the paper's linear-acceleration iteration (Newmark beta = 1/6)"},
+      {"radau", &make_radau_integrator,
+       "Radau IIA, 3 stages, order 5 (Hairer-Wanner), simplified Newton on n x n matrices"},
   };
   return table;
 }

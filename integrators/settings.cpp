@@ -121,13 +121,13 @@ const std::vector<Entry>& table() {
       number("rtol", "all adaptive", "relative tolerance", &S::rtol, 0.0, 1.0, true),
       number("atol", "all", "absolute tolerance (fixed-step methods: on the acceleration update)",
              &S::atol, 0.0, inf, true),
-      number("step", "generalized-alpha, linear-acceleration",
+      number("step", "generalized-alpha, linear-acceleration, radau",
              "fixed step, or the first step when adaptive [s]", &S::step, 0.0, inf, true),
       number("max_step", "all", "largest step, 0 = no limit [s]", &S::max_step, 0.0, inf, false),
-      number("min_step", "generalized-alpha, linear-acceleration",
+      number("min_step", "generalized-alpha, linear-acceleration, radau",
              "smallest step of the step control; below it the run fails [s]", &S::min_step, 0.0,
              inf, true),
-      choice("step_control", "generalized-alpha, linear-acceleration",
+      choice("step_control", "generalized-alpha, linear-acceleration, radau",
              "fixed: pure fixed step; substep: fixed step, failed steps retried as sub-steps; "
              "adaptive: local error against rtol/atol",
              &S::step_control,
@@ -147,8 +147,9 @@ const std::vector<Entry>& table() {
       number("balance_tol", "linear-acceleration",
              "balance error of Eq. 1 that ends the iteration (0.001 = the paper's 0.1 %)",
              &S::balance_tol, 0.0, 1.0, true),
-      integer("max_iterations", "generalized-alpha, linear-acceleration", "iterations per step",
-              &S::max_iterations, 1, 100000),
+      integer("max_iterations", "generalized-alpha, linear-acceleration, radau",
+              "iterations per step (radau: at most 7, RADAU5's limit)", &S::max_iterations, 1,
+              100000),
       choice("linear_solver", "ida, cvode",
              "direct linear solver: klu or dense on the 2n x 2n first-order matrix, "
              "second-order on the n x n matrix K + cj C + cj^2 I (theory 7.9)",
@@ -238,8 +239,9 @@ void apply_setting_assignment(IntegratorSettings& s, const std::string& assignme
 }
 
 bool takes_fixed_steps(const IntegratorSettings& s) {
-  const bool newmark = s.name == "generalized-alpha" || s.name == "linear-acceleration";
-  return newmark && s.step_control != "adaptive";
+  const bool stepped =
+      s.name == "generalized-alpha" || s.name == "linear-acceleration" || s.name == "radau";
+  return stepped && s.step_control != "adaptive";
 }
 
 std::string settings_label(const IntegratorSettings& s) {

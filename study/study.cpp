@@ -878,11 +878,12 @@ StabilityResult stability(const Options& opt, const CaseInput& spec, const Stabi
   }
   StabilityResult res;
   res.c = cases.front();
-  if (res.c.settings.name != "generalized-alpha" && res.c.settings.name != "linear-acceleration")
+  const std::string& nm = res.c.settings.name;
+  if (nm != "generalized-alpha" && nm != "linear-acceleration" && nm != "radau")
     throw InputError(where +
-                     ": a stability study searches the fixed step of generalized-alpha "
-                     "or linear-acceleration, not " +
-                     res.c.settings.name);
+                     ": a stability study searches the fixed step of generalized-alpha, "
+                     "linear-acceleration or radau, not " +
+                     nm);
   if (opt.reference_file.empty())
     reference_case(opt.reference, s.info.integrator);
   else if (!so.sweep.empty())

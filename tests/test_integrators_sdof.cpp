@@ -16,6 +16,7 @@
 #include "integrators/integrator.h"
 #include "integrators/newmark.h"
 #include "sdof_problem.h"
+#include "sdof_run.h"
 
 namespace evas {
 namespace {
@@ -28,25 +29,11 @@ constexpr double kPi = 3.14159265358979323846;
 
 using test::oscillators;
 
-struct Errors {
-  double q = 0.0, v = 0.0;  // max over outputs of max-norm errors
-};
+using test::Errors;
 
 Errors run(const IntegratorSettings& s, SdofProblem& p, const std::vector<double>& outputs,
            IntegratorStats* stats = nullptr) {
-  auto integ = make_integrator(s.name);
-  Vec q0, v0;
-  p.initial_state(q0, v0);
-  integ->init(p, 0.0, q0, v0, s);
-  Errors e;
-  integrate(*integ, p, 0.0, outputs, [&](double t, const Vec& q, const Vec& v) {
-    Vec qe, ve;
-    p.exact(t, qe, ve);
-    e.q = std::max(e.q, (q - qe).lpNorm<Eigen::Infinity>());
-    e.v = std::max(e.v, (v - ve).lpNorm<Eigen::Infinity>());
-  });
-  if (stats) *stats = integ->stats();
-  return e;
+  return test::run_sdof(s, p, outputs, stats);
 }
 
 void print_stats(const std::string& label, const IntegratorStats& s) {
@@ -471,7 +458,7 @@ TEST(SdofNewmark, VelocityErrorCoefficientMatchesTheMethod) {
 
 TEST(SdofRegistry, NamesAndUnknown) {
   const auto names = integrator_names();
-  ASSERT_EQ(names.size(), 4u);
+  ASSERT_EQ(names.size(), 5u);
   for (const auto& n : names) EXPECT_EQ(make_integrator(n)->name(), n);
   EXPECT_THROW(make_integrator("rk4"), InputError);
 }

@@ -164,8 +164,9 @@ inline double channel_error(const study::RunData& d, const study::RunData& ref) 
 // generalized-alpha (rho_inf 0.8, effective mass, the scene's rtol/atol for
 // its increment test) at steps of 1e-5 s and 8e-6 s (a step whose iteration
 // fails is taken as sub-steps), and with adaptive steps (PI controller) at
-// rtol 3e-4, atol 3e-8 from a first step of 8e-6 s
-// (docs/engine-speed.md, "Settings").
+// rtol 3e-4, atol 3e-8 from a first step of 8e-6 s; Radau IIA (order 5) with
+// adaptive steps at rtol 1e-3 and 1e-4 from a first step of 1e-5 s
+// (docs/engine-speed.md, "Settings" and "A fifth-order method").
 struct EngineRun {
   std::string solver;
   double rtol, atol;
@@ -183,7 +184,9 @@ inline std::vector<EngineRun> engine_runs() {
           {"second-order", 7e-5, 7e-9},
           {"second-order", 1e-5, 1e-9, "generalized-alpha", 1e-5},
           {"second-order", 1e-5, 1e-9, "generalized-alpha", 8e-6},
-          {"second-order", 3e-4, 3e-8, "generalized-alpha", 8e-6, "adaptive"}};
+          {"second-order", 3e-4, 3e-8, "generalized-alpha", 8e-6, "adaptive"},
+          {"second-order", 1e-3, 1e-7, "radau", 1e-5, "adaptive"},
+          {"second-order", 1e-4, 1e-8, "radau", 1e-5, "adaptive"}};
 }
 
 inline std::string run_label(const EngineRun& r) {
@@ -294,7 +297,10 @@ inline std::string engine_table(const std::string& path) {
          "counted as full factorizations, an upper bound when IDA's KLU module "
          "refactorizes). Rest: the integrator's own work, the outputs, and what the "
          "run's calls cost above the unit costs of the initial state (a solve costs "
-         "about 2.1 us in the run; a call-graph profile is in docs/engine-speed.md):\n\n" +
+         "about 2.1 us in the run; a call-graph profile is in docs/engine-speed.md). radau's "
+         "complex factorizations and solves are counted at the real ones' unit costs, so its "
+         "rest holds their excess (its profile: docs/engine-speed.md, \"A fifth-order "
+         "method\"):\n\n" +
          prof.str();
 }
 

@@ -9,7 +9,8 @@
 //     c = (1/3, 1),  A = [5/12 -1/12; 3/4 1/4],  y_{n+1} = y_n + Z_2,
 // solved by simplified Newton with the matrix I - h A (x) J, J = dF/dy at
 // (t_n, y_n) = [0 I; -K -C] from the model's analytic K = df/dq, C = df/dv,
-// factorised by Eigen's sparse LU once per step.
+// factorised by Eigen's sparse LU once per step. (A teaching example: evas's
+// built-in `radau` is the three-stage, fifth-order method, integrators/radau.cpp.)
 //
 // Build it against an installed evas (docs/extending.md):
 //     cmake -S examples/radau_plugin -B build-radau && cmake --build build-radau

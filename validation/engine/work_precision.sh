@@ -43,5 +43,6 @@ for c in $cases; do
     --case "linear-acceleration iteration=effective-mass step_control=adaptive rtol=1e-3,1e-4" \
     --case "linear-acceleration iteration=newton step=1e-5,5e-6" \
     --case "linear-acceleration iteration=anderson step=1e-5,5e-6" \
-    --case "linear-acceleration iteration=fixed-point step=5e-7"
+    --case "linear-acceleration iteration=fixed-point step=5e-7" \
+    --case "radau step_control=adaptive step=1e-5 rtol=1e-3..1e-6/4"
 done
