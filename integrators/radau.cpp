@@ -154,14 +154,8 @@ class Radau final : public FixedStepIntegrator {
     eta_ = 1.0;
   }
 
-  void start_acceleration() override {
-    a_ = -f_;
-    have_stages_ = false;
-  }
-
   void accepted() override {
     for (int i = 0; i < 3; ++i) Zprev_[i].swap(Ztrial_[i]);
-    have_stages_ = true;
   }
 
   // The embedded estimate filtered by the real iteration matrix (Hairer &
@@ -264,7 +258,7 @@ class Radau final : public FixedStepIntegrator {
   // Z from the last step's collocation polynomial u (u(0) = 0, u(c_i) = Zprev_i
   // in units of the last step), evaluated at the new stage times 1 + r c_j.
   void start_values(double h) {
-    if (!have_stages_ || !has_history() || !(h_prev_ > 0.0)) {
+    if (!has_history() || !(h_prev_ > 0.0)) {  // Zprev_ holds the step before
       for (int i = 0; i < 3; ++i) Z_[i].setZero();
       extrapolated_ = false;
       return;
@@ -406,7 +400,6 @@ class Radau final : public FixedStepIntegrator {
            tab_.D(2, 2) * Z_[2].tail(n)) /
           h;
     f1_ = -a1_;
-    for (int i = 0; i < 3; ++i) Ztrial_[i] = Z_[i];
     if (s_.step_control == "adaptive") {
       r1_.head(n) = (h * tab_.b0) * v_;
       r1_.tail(n) = (h * tab_.b0) * a_;
@@ -415,6 +408,8 @@ class Radau final : public FixedStepIntegrator {
       solve_real(cr, r1_, err_);
       err_ *= cr;
     }
+    // kept for accepted(); start_values() writes Z_ anew before it is read again
+    for (int i = 0; i < 3; ++i) Ztrial_[i].swap(Z_[i]);
     fresh_ = false;
     if (theta_last_ > kRefreshTheta) have_jacobian_ = false;
   }
@@ -425,7 +420,7 @@ class Radau final : public FixedStepIntegrator {
   Vec w_, r1_, x1_, tq_, tv_, err_;
   Vec r2r_, r2i_, x2r_, x2i_, cqr_, cqi_;
   SplitComplexLU luc_;
-  bool have_jacobian_ = false, fresh_ = false, have_stages_ = false, extrapolated_ = false;
+  bool have_jacobian_ = false, fresh_ = false, extrapolated_ = false;
   double h_factor_ = 0.0, eta_ = 1.0, theta_last_ = 0.0;
 };
 

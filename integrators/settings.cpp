@@ -238,10 +238,12 @@ void apply_setting_assignment(IntegratorSettings& s, const std::string& assignme
   }
 }
 
+bool has_fixed_step(const std::string& name) {
+  return name == "generalized-alpha" || name == "linear-acceleration" || name == "radau";
+}
+
 bool takes_fixed_steps(const IntegratorSettings& s) {
-  const bool stepped =
-      s.name == "generalized-alpha" || s.name == "linear-acceleration" || s.name == "radau";
-  return stepped && s.step_control != "adaptive";
+  return has_fixed_step(s.name) && s.step_control != "adaptive";
 }
 
 std::string settings_label(const IntegratorSettings& s) {

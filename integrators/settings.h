@@ -33,8 +33,10 @@ std::string get_integrator_setting(const IntegratorSettings& s, const std::strin
 /// Applies "KEY=VALUE" (as given to --set). Throws InputError naming the option.
 void apply_setting_assignment(IntegratorSettings& s, const std::string& assignment);
 
-/// True when `s` names a method that steps at settings.step (generalized-alpha,
-/// linear-acceleration) and step_control is not "adaptive".
+/// True when `name` is a method that can step at settings.step (generalized-alpha,
+/// linear-acceleration, radau: step_control fixed or substep).
+bool has_fixed_step(const std::string& name);
+/// True when `s` names such a method and step_control is not "adaptive".
 bool takes_fixed_steps(const IntegratorSettings& s);
 
 /// "name key=value ..." of the accuracy knob (rtol of an adaptive method, step

@@ -878,12 +878,11 @@ StabilityResult stability(const Options& opt, const CaseInput& spec, const Stabi
   }
   StabilityResult res;
   res.c = cases.front();
-  const std::string& nm = res.c.settings.name;
-  if (nm != "generalized-alpha" && nm != "linear-acceleration" && nm != "radau")
+  if (!has_fixed_step(res.c.settings.name))
     throw InputError(where +
                      ": a stability study searches the fixed step of generalized-alpha, "
                      "linear-acceleration or radau, not " +
-                     nm);
+                     res.c.settings.name);
   if (opt.reference_file.empty())
     reference_case(opt.reference, s.info.integrator);
   else if (!so.sweep.empty())

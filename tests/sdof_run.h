@@ -32,5 +32,17 @@ inline Errors run_sdof(const IntegratorSettings& s, SdofProblem& p,
   return e;
 }
 
+/// Outputs at t = 0.1, 0.2, ..., 1.
+inline std::vector<double> tenth_outputs() {
+  std::vector<double> outputs;
+  for (int k = 1; k <= 10; ++k) outputs.push_back(0.1 * k);
+  return outputs;
+}
+
+/// A kicked stop between outputs, a kicked stop on an output, a quiet stop.
+inline std::vector<Stop> kicked_stops() {
+  return {{0.3137, {0.7, -0.2, 0.1}}, {0.5, {-0.4, 0.3, 0.0}}, {0.6502, {}}};
+}
+
 }  // namespace test
 }  // namespace evas

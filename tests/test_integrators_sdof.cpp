@@ -30,11 +30,7 @@ constexpr double kPi = 3.14159265358979323846;
 using test::oscillators;
 
 using test::Errors;
-
-Errors run(const IntegratorSettings& s, SdofProblem& p, const std::vector<double>& outputs,
-           IntegratorStats* stats = nullptr) {
-  return test::run_sdof(s, p, outputs, stats);
-}
+using test::run_sdof;
 
 void print_stats(const std::string& label, const IntegratorStats& s) {
   std::cout << "  stats " << label << ": steps " << s.steps << ", residual evals "
@@ -74,7 +70,7 @@ TEST_P(SdofFixedStepOrder, SecondOrderAtOneSecond) {
   for (int k = 0; k < 3; ++k) {
     s.step = h0 / std::pow(2.0, k);
     SdofProblem p(oscillators(), c.body_part);
-    const Errors err = run(s, p, {1.0}, &st);
+    const Errors err = run_sdof(s, p, {1.0}, &st);
     e[k] = err.q;
     ev[k] = err.v;
   }
@@ -116,7 +112,7 @@ TEST(SdofLinearAcceleration, DefaultBalanceTolerance) {
   s.step = 0.0025;
   IntegratorStats st;
   SdofProblem p(oscillators(), false);
-  const Errors e = run(s, p, {1.0}, &st);
+  const Errors e = run_sdof(s, p, {1.0}, &st);
   std::cout << "linear-acceleration fixed-point, balance_tol 1e-3, h = 0.0025: |q err|(t=1) = "
             << e.q << "\n";
   print_stats("linear-acceleration balance 1e-3", st);
@@ -134,7 +130,7 @@ TEST(SdofLinearAcceleration, ThrowsWhenFixedPointCannotBalance) {
   s.step = 0.2;
   s.step_control = "fixed";  // no sub-steps: the failed step ends the run
   try {
-    run(s, p, {1.0});
+    run_sdof(s, p, {1.0});
     FAIL() << "expected RunError";
   } catch (const RunError& e) {
     const std::string msg = e.what();
@@ -161,8 +157,7 @@ class SdofAdaptiveAccuracy : public ::testing::TestWithParam<AdaptiveCase> {};
 
 TEST_P(SdofAdaptiveAccuracy, ErrorFollowsTolerance) {
   const AdaptiveCase& c = GetParam();
-  std::vector<double> outputs;
-  for (int k = 1; k <= 10; ++k) outputs.push_back(0.1 * k);
+  const std::vector<double> outputs = test::tenth_outputs();
   const double rtols[3] = {1e-4, 1e-6, 1e-8};
   double e[3];
   for (int k = 0; k < 3; ++k) {
@@ -175,7 +170,7 @@ TEST_P(SdofAdaptiveAccuracy, ErrorFollowsTolerance) {
     s.atol = 1e-2 * rtols[k];
     SdofProblem p(oscillators());
     IntegratorStats st;
-    e[k] = run(s, p, outputs, &st).q;
+    e[k] = run_sdof(s, p, outputs, &st).q;
     std::cout << std::setprecision(4) << c.label << " rtol " << rtols[k]
               << ": max |q err| over t = 0.1..1 = " << e[k] << " (" << e[k] / rtols[k]
               << " rtol)\n";
@@ -235,13 +230,11 @@ class SdofStops : public ::testing::TestWithParam<StopCase> {};
 TEST_P(SdofStops, LandsExactlyAndRestarts) {
   const StopCase& c = GetParam();
   // a kicked stop between outputs, a kicked stop on an output, a quiet stop
-  const std::vector<Stop> stops = {
-      {0.3137, {0.7, -0.2, 0.1}}, {0.5, {-0.4, 0.3, 0.0}}, {0.6502, {}}};
+  const std::vector<Stop> stops = test::kicked_stops();
   SdofProblem p(oscillators(), true, stops);
-  std::vector<double> outputs;
-  for (int k = 1; k <= 10; ++k) outputs.push_back(0.1 * k);
+  const std::vector<double> outputs = test::tenth_outputs();
   IntegratorStats st;
-  const Errors e = run(c.s, p, outputs, &st);
+  const Errors e = run_sdof(c.s, p, outputs, &st);
   std::cout << c.label << ": max |q err| with stops = " << e.q << ", |v err| = " << e.v << "\n";
   print_stats(c.label, st);
   ASSERT_EQ(p.landed.size(), 3u);
@@ -348,9 +341,9 @@ TEST(SdofNewmark, RefusedPredictorFallsBackToConstantAcceleration) {
     s.iteration = "effective-mass";
     IntegratorStats plain, refused;
     SdofProblem p(oscillators());
-    const Errors e0 = run(s, p, {0.25, 0.5, 0.75, 1.0}, &plain);
+    const Errors e0 = run_sdof(s, p, {0.25, 0.5, 0.75, 1.0}, &plain);
     test::RefusingSdof r(oscillators(), 0.505);
-    const Errors e1 = run(s, r, {0.25, 0.5, 0.75, 1.0}, &refused);
+    const Errors e1 = run_sdof(s, r, {0.25, 0.5, 0.75, 1.0}, &refused);
     EXPECT_TRUE(r.refused) << name;
     EXPECT_EQ(refused.steps, plain.steps) << name;
     EXPECT_EQ(refused.convergence_failures, 0) << name;
@@ -377,11 +370,11 @@ TEST(SdofNewmark, AdaptiveStepGrowsBackAfterACut) {
     for (int k = 1; k <= 1000; ++k) outputs.push_back(k * 1e-3 * 0.9137);
     IntegratorStats one, plain, refused;
     SdofProblem p0(oscillators());
-    run(s, p0, {outputs.back()}, &one);
+    run_sdof(s, p0, {outputs.back()}, &one);
     SdofProblem p(oscillators());
-    run(s, p, outputs, &plain);
+    run_sdof(s, p, outputs, &plain);
     test::RefusingSdof r(oscillators(), 0.3, 6);  // three failed steps: h / 64
-    run(s, r, outputs, &refused);
+    run_sdof(s, r, outputs, &refused);
     EXPECT_GE(refused.refused_states, 2) << name;
     EXPECT_TRUE(r.refused) << name;
     std::cout << name << ": " << one.steps << " steps with one output, " << plain.steps
