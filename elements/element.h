@@ -44,6 +44,17 @@ class Element {
     return false;
   }
 
+  /// What the loads read of the motion of the marker in `slot`: kReadsTranslation
+  /// (p, v, a), kReadsRotation (psi, w, al), both or neither (the marker axes R come
+  /// from the body's frame and are always current). System::force() computes only
+  /// what some element reads: a field no element declares is not current there.
+  /// Default: both.
+  static constexpr unsigned kReadsTranslation = 1, kReadsRotation = 2;
+  virtual unsigned motion_reads(std::size_t slot) const {
+    (void)slot;
+    return kReadsTranslation | kReadsRotation;
+  }
+
   /// Inertial loads (beyond the paper; e.g. the coupled piston's reciprocating
   /// mass). An element of rank r > 0 has loads that are affine in the marker
   /// accelerations (MarkerMotion::a, al) about the values it is evaluated at:

@@ -93,6 +93,11 @@ class PistonConrod : public Element {
   bool needs_rotation(std::size_t slot) const override {
     return slot == 1 || (slot == 0 && p_.coupled);
   }
+  /// Prescribed: the loads follow from time alone (and the liner's axes). Coupled:
+  /// the crank angle is the pin's rotation against the liner's.
+  unsigned motion_reads(std::size_t slot) const override {
+    return p_.coupled && slot < 2 ? kReadsRotation : 0u;
+  }
   /// `gas` may be null (no gas force). Throws InputError on inconsistent geometry.
   PistonConrod(std::string name, std::vector<int> markers, const PistonConrodParams& p,
                std::shared_ptr<const PressureTable> gas);

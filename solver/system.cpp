@@ -20,6 +20,9 @@ System::System(Model& model) : model_(model) {
   }
   const auto& markers = model_.markers();
   motion_.resize(markers.size());
+  static const LofState ground;
+  for (std::size_t m = 0; m < markers.size(); ++m)
+    if (markers[m].on_ground()) marker_motion(markers[m], ground, nullptr, nullptr, motion_[m]);
   Lm_.resize(markers.size());
   Pq_.resize(markers.size());
   Pv_.resize(markers.size());
@@ -93,6 +96,7 @@ System::System(Model& model) : model_(model) {
       rank_ += r;
     }
   }
+  build_row_sets();
   if (rank_ > 0) {
     // M^-1 K = K + U Z^-1 W^T K fills rows of the inertial bodies in the columns of
     // their neighbours (the bodies their rows of K reach).
@@ -199,21 +203,89 @@ void System::add_rotation_correction(const Body& B, const Vec3& w_L, const Vec3&
         KW(B.rigid[3 + i], B.rigid[3 + j]) += Kq(i, j);
 }
 
-void System::update_markers(double t, const double* q, const double* v) {
+void System::build_row_sets() {
+  const auto& markers = model_.markers();
+  const auto& elements = model_.elements();
+  constexpr unsigned kAll = Element::kReadsTranslation | Element::kReadsRotation;
+  // rows read: per marker the union of its elements' motion_reads()
+  std::vector<unsigned> reads(markers.size(), 0u), loaded(markers.size(), 0u),
+      timed_load(markers.size(), 0u);
+  for (const auto& el : elements)
+    for (std::size_t i = 0; i < el->markers().size(); ++i)
+      reads[el->markers()[i]] |= el->motion_reads(i);
+  // loads of time alone (the prescribed piston): once per t into ftime_ on the
+  // rows of their markers; the other elements' loads on the rows of theirs
+  timed_.clear();
+  is_timed_.assign(elements.size(), 0);
+  for (std::size_t e = 0; e < elements.size(); ++e) {
+    const Element& el = *elements[e];
+    const bool timed = !el.state_dependent() && el.inertia_rank() == 0 && el.internal_count() == 0;
+    if (timed) {
+      timed_.push_back(static_cast<int>(e));
+      is_timed_[e] = 1;
+    }
+    if (el.inertia_rank() == 0)
+      for (int m : el.markers()) (timed ? timed_load : loaded)[m] = kAll;
+  }
+  unread_.resize(markers.size());
+  for (std::size_t m = 0; m < markers.size(); ++m) unread_[m] = reads[m] == 0u;
+  rset_ = row_sets(reads);
+  lset_ = row_sets(loaded);
+  tset_ = row_sets(timed_load);
+  ftime_ = Vec::Zero(model_.size());
+  t_time_ = std::numeric_limits<double>::quiet_NaN();
+}
+
+std::vector<System::RowSet> System::row_sets(const std::vector<unsigned>& parts) const {
+  const auto& markers = model_.markers();
+  const auto& bodies = model_.bodies();
+  std::vector<RowSet> sets(bodies.size());
+  for (std::size_t b = 0; b < bodies.size(); ++b) {
+    RowSet& set = sets[b];
+    for (std::size_t m = 0; m < markers.size(); ++m) {
+      if (markers[m].body != static_cast<int>(b)) continue;
+      for (int k = 0; k < 6; ++k)
+        if (parts[m] & (k < 3 ? Element::kReadsTranslation : Element::kReadsRotation))
+          set.rows.push_back(mrow_[m] + k);
+    }
+    set.all = static_cast<Eigen::Index>(set.rows.size()) == bstack_[b].rows();
+    if (set.all) continue;
+    set.stack = Mat(static_cast<Eigen::Index>(set.rows.size()), bodies[b].n());
+    for (std::size_t k = 0; k < set.rows.size(); ++k)
+      set.stack.row(static_cast<Eigen::Index>(k)) = bstack_[b].row(set.rows[k]);
+    set.y = Vec::Zero(set.stack.rows());
+    set.z = Vec::Zero(set.stack.rows());
+  }
+  return sets;
+}
+
+void System::update_markers(double t, const double* q, const double* v, bool reads_only) {
   update_lof(t);
   const auto& markers = model_.markers();
   const auto& bodies = model_.bodies();
-  static const LofState ground;
   for (std::size_t b = 0; b < bodies.size(); ++b) {
     Eigen::Map<const Vec> qb(q + bodies[b].offset, bodies[b].n()),
         vb(v + bodies[b].offset, bodies[b].n());
-    bq_[b].noalias() = bstack_[b] * qb;
-    bv_[b].noalias() = bstack_[b] * vb;
+    RowSet& set = rset_[b];
+    if (!reads_only || set.all) {
+      bq_[b].noalias() = bstack_[b] * qb;
+      bv_[b].noalias() = bstack_[b] * vb;
+      continue;
+    }
+    set.y.noalias() = set.stack * qb;
+    set.z.noalias() = set.stack * vb;
+    bq_[b].setZero();
+    bv_[b].setZero();
+    for (std::size_t k = 0; k < set.rows.size(); ++k) {
+      bq_[b][set.rows[k]] = set.y[k];
+      bv_[b][set.rows[k]] = set.z[k];
+    }
   }
   for (std::size_t m = 0; m < markers.size(); ++m) {
     const int b = markers[m].body;
-    if (b < 0) {
-      marker_motion(markers[m], ground, nullptr, nullptr, motion_[m]);
+    if (b < 0) continue;             // ground: constant, set by the constructor
+    if (reads_only && unread_[m]) {  // only the axes (from the frame) are read
+      motion_[m].R.noalias() = lof_[b].R_GL * markers[m].R_LM;
       continue;
     }
     const int r = mrow_[m];
@@ -224,7 +296,7 @@ void System::update_markers(double t, const double* q, const double* v) {
 
 void System::force(double t, const double* q, const double* v, double* f) {
   ++counters.f_evals;
-  force_impl(t, q, v, f);
+  force_impl(t, q, v, f, reads_only_ && rank_ == 0);
 }
 
 void System::apply_load(int id, const Vec3& F, const Vec3& M, double* f) const {
@@ -248,23 +320,46 @@ void System::accumulate_load(int id, const Vec3& F, const Vec3& M) {
   bload_[b].segment<3>(r + 3).noalias() += R.transpose() * M;
 }
 
-void System::flush_loads(double* f) {
+void System::flush_loads(double* f, std::vector<RowSet>& sets) {
   const auto& bodies = model_.bodies();
   for (std::size_t b = 0; b < bodies.size(); ++b) {
     Eigen::Map<Vec> fb(f + bodies[b].offset, bodies[b].n());
-    fb.noalias() -= bstack_[b].transpose() * bload_[b];
+    RowSet& set = sets[b];
+    if (set.all) {
+      fb.noalias() -= bstack_[b].transpose() * bload_[b];
+      continue;
+    }
+    for (std::size_t k = 0; k < set.rows.size(); ++k) set.y[k] = bload_[b][set.rows[k]];
+    fb.noalias() -= set.stack.transpose() * set.y;
   }
 }
 
-void System::force_impl(double t, const double* q, const double* v, double* f) {
-  update_markers(t, q, v);
+void System::time_loads(double t) {
+  for (auto& l : bload_) l.setZero();
+  for (int e : timed_) {
+    ElementWork& w = ework_[e];
+    const auto& ids = model_.elements()[e]->markers();
+    for (std::size_t i = 0; i < ids.size(); ++i) w.motion[i] = motion_[ids[i]];
+    evaluate_element(e, t);
+    for (std::size_t i = 0; i < ids.size(); ++i)
+      accumulate_load(ids[i], w.loads[i].F, w.loads[i].M);
+  }
+  ftime_.setZero();
+  flush_loads(ftime_.data(), tset_);
+  t_time_ = t;
+}
+
+void System::force_impl(double t, const double* q, const double* v, double* f, bool reads_only) {
+  update_markers(t, q, v, reads_only);
+  if (!timed_.empty() && t != t_time_) time_loads(t);
   const auto& bodies = model_.bodies();
   for (std::size_t b = 0; b < bodies.size(); ++b) {
     const Body& B = bodies[b];
     const BodyWork& W = bwork_[b];
     Eigen::Map<const Vec> qb(q + B.offset, B.n()), vb(v + B.offset, B.n());
     Eigen::Map<Vec> fb(f + B.offset, B.n());
-    fb = W.f0 + B.data->eigenvalues.cwiseProduct(qb) + B.data->damping.cwiseProduct(vb);
+    fb = W.f0 + ftime_.segment(B.offset, B.n()) + B.data->eigenvalues.cwiseProduct(qb) +
+         B.data->damping.cwiseProduct(vb);
     if (!W.frame_free) {  // (a fixed frame: KW = G = 0)
       fb.noalias() += W.KW * qb;
       fb.noalias() += W.G * vb;
@@ -273,7 +368,7 @@ void System::force_impl(double t, const double* q, const double* v, double* f) {
   for (auto& l : bload_) l.setZero();
   for (std::size_t e = 0; e < ework_.size(); ++e) {
     const Element& el = *model_.elements()[e];
-    if (el.inertia_rank() > 0) continue;
+    if (el.inertia_rank() > 0 || is_timed_[e]) continue;
     ElementWork& w = ework_[e];
     const auto& ids = el.markers();
     for (std::size_t i = 0; i < ids.size(); ++i) w.motion[i] = motion_[ids[i]];
@@ -281,7 +376,7 @@ void System::force_impl(double t, const double* q, const double* v, double* f) {
     for (std::size_t i = 0; i < ids.size(); ++i)
       accumulate_load(ids[i], w.loads[i].F, w.loads[i].M);
   }
-  flush_loads(f);
+  flush_loads(f, lset_);
   if (rank_ > 0) solve_inertia(t, f);
 }
 
@@ -442,6 +537,7 @@ void System::force_jacobian(double t, const double* q, const double* v, SpMat& K
   }
   const int nb = static_cast<int>(model_.bodies().size());
   for (std::size_t e = 0; e < ework_.size(); ++e) {
+    if (is_timed_[e]) continue;  // loads of time alone: D = 0
     const Element& el = *model_.elements()[e];
     ElementWork& w = ework_[e];
     const auto& ids = el.markers();
@@ -558,7 +654,7 @@ bool System::at_stop(double t, double* q, double* v) {
     reanchor(static_cast<int>(b), t, q, v);
     changed = true;
   }
-  if (changed) t_lof_ = std::numeric_limits<double>::quiet_NaN();
+  if (changed) t_lof_ = t_time_ = std::numeric_limits<double>::quiet_NaN();
   return changed;
 }
 

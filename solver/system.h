@@ -70,7 +70,12 @@ class System : public Problem {
   }
 
   /// Marker motions at (t, q, v), accelerations at qdd = 0 (MarkerMotion::a).
-  void update_markers(double t, const double* q, const double* v);
+  /// `reads_only`: only what some element reads (Element::motion_reads); the
+  /// other translations and rotations are then not current.
+  void update_markers(double t, const double* q, const double* v, bool reads_only = false);
+  /// force() computes only the marker rows the elements read (default); false:
+  /// every row, as the other paths do (tests compare the two).
+  void set_read_rows_only(bool on) { reads_only_ = on; }
   /// Marker motions for outputs; with inertial elements also the full accelerations
   /// (qdd = -f solved), else the accelerations at qdd = 0.
   void observe(double t, const double* q, const double* v);
@@ -98,13 +103,31 @@ class System : public Problem {
     bool frame_free = false;  // KW = G = 0 (the products are skipped)
   };
   void update_lof(double t);
-  void force_impl(double t, const double* q, const double* v, double* f);
+  void force_impl(double t, const double* q, const double* v, double* f, bool reads_only = false);
+  /// rset_, unread_ from the elements' motion_reads(); timed_, lset_, tset_ from
+  /// their state dependence (constructor).
+  void build_row_sets();
   /// Subtracts the generalised loads Lm^T (F, M) of marker `id` from f.
   void apply_load(int id, const Vec3& F, const Vec3& M, double* f) const;
   /// Adds (F, M) of marker `id` (G components) to its body's load buffer;
   /// flush_loads() subtracts all of them from f with one product per body.
   void accumulate_load(int id, const Vec3& F, const Vec3& M);
-  void flush_loads(double* f);
+  /// Rows of a body's stack (the translation and/or rotation rows of some
+  /// markers), stacked, with work vectors y, z of their size; all: every row
+  /// (then the stack itself is used and the rest is empty).
+  struct RowSet {
+    std::vector<int> rows;
+    Mat stack;
+    Vec y, z;
+    bool all = true;
+  };
+  /// Per body the rows of `parts` (per marker: Element::kReads* bits).
+  std::vector<RowSet> row_sets(const std::vector<unsigned>& parts) const;
+  /// f -= the loads in bload_ on the rows of `sets` (per body; the other rows of
+  /// bload_ must be zero).
+  void flush_loads(double* f, std::vector<RowSet>& sets);
+  /// ftime_ = the generalised loads of the elements of time alone at t.
+  void time_loads(double t);
   /// Inertial elements: f_0 -> M^-1 f_0; leaves their ElementWork::motion at the
   /// solved accelerations and U_, W_, lu_ for apply_inverse_mass().
   void solve_inertia(double t, double* f);
@@ -159,6 +182,20 @@ class System : public Problem {
   std::vector<PairRowMat> bstack_rows_;  // the same, row-major (row gathers in force_jacobian)
   std::vector<Vec> bq_, bv_, bload_;
   std::vector<int> mrow_;  // per marker: first row in its body's stack (-1: ground)
+  // The rows force() computes: the rows some element reads (rset_; unread_: the
+  // markers none reads).
+  std::vector<RowSet> rset_;
+  std::vector<char> unread_;
+  bool reads_only_ = true;
+  // Elements whose loads depend on t alone (not state_dependent(), no inertia, no
+  // internal states): their generalised loads ftime_ at t_time_, computed once per
+  // t on the rows of their markers (tset_); the other elements' loads on the rows
+  // of theirs (lset_).
+  std::vector<int> timed_;
+  std::vector<char> is_timed_;
+  Vec ftime_;
+  double t_time_ = std::numeric_limits<double>::quiet_NaN();
+  std::vector<RowSet> lset_, tset_;
   // Jacobian: per body pair an element couples, Y = sum E_ij [Bu; Bt]_j over the
   // marker pairs (6 rows per marker of bi), then K_ij -= [Bu; Bt]_i^T Y.
   struct PairWork {
