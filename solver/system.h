@@ -112,6 +112,8 @@ class System : public Problem {
   /// Adds (F, M) of marker `id` (G components) to its body's load buffer;
   /// flush_loads() subtracts all of them from f with one product per body.
   void accumulate_load(int id, const Vec3& F, const Vec3& M);
+  /// Element e's loads at t from the current marker motions, into bload_.
+  void load_element(int e, double t);
   /// Rows of a body's stack (the translation and/or rotation rows of some
   /// markers), stacked, with work vectors y, z of their size; all: every row
   /// (then the stack itself is used and the rest is empty).
