@@ -33,6 +33,11 @@ void expect_finite(const std::string& name, const std::vector<double>& v) {
                         std::to_string(i));
 }
 
+// Body files are written without compression: modal data (doubles) deflate by
+// about 15 % only, and inflating them took 5 % of a whole run of the paper's
+// engine (both kept bodies, docs/engine-speed.md).
+constexpr bool kStoreCompressed = false;
+
 // Limits checked before a dataset is read, so that a corrupt or hostile file
 // is refused with a message instead of an allocation failure.
 constexpr long double kMaxValues = 2147483647.0L;  // per dataset: Eigen's int indices
@@ -74,7 +79,7 @@ std::vector<hsize_t> checked_dims(hid_t file, const std::string& name) {
   }
   h5::Handle type(H5Dget_type(d), H5Tclose);
   const long double bytes = total * (type.valid() ? H5Tget_size(type) : 8);
-  const long double stored = static_cast<long double>(H5Dget_storage_size(d));
+  const long double stored = h5::stored_bytes(d);
   if (bytes > kSmallBytes && bytes > kMaxCompression * stored)
     throw h5::Failure("dataset '" + name + "' declares shape " + shape_text(dims) + " (" +
                       bytes_text(bytes) + ") but the file stores only " + bytes_text(stored) +
@@ -121,48 +126,50 @@ void write_body(hid_t file, const ModalBody& body) {
   {
     h5::Handle g = h5::create_group(file, "nodes");
     std::vector<long long> ids(body.node_ids.begin(), body.node_ids.end());
-    h5::write_int64s(g, "ids", {uN}, ids.data());
+    h5::write_int64s(g, "ids", {uN}, ids.data(), kStoreCompressed);
     RowMat s = body.s;
-    h5::write_doubles(g, "coordinates", {uN, 3}, s.data());
+    h5::write_doubles(g, "coordinates", {uN, 3}, s.data(), kStoreCompressed);
   }
   if (!body.reduced()) {
     h5::Handle g = h5::create_group(file, "mass");
     if (is_diagonal(body.mass)) {
       Vec d = body.mass.diagonal();
-      h5::write_doubles(g, "lumped", {uN}, d.data());
+      h5::write_doubles(g, "lumped", {uN}, d.data(), kStoreCompressed);
     } else {
       Eigen::SparseMatrix<double, Eigen::RowMajor, int> csr = body.mass;
       csr.makeCompressed();
       h5::Handle c = h5::create_group(g, "consistent");
       std::vector<long long> indptr(csr.outerIndexPtr(), csr.outerIndexPtr() + N + 1);
       std::vector<long long> indices(csr.innerIndexPtr(), csr.innerIndexPtr() + csr.nonZeros());
-      h5::write_int64s(c, "indptr", {uN + 1}, indptr.data());
-      h5::write_int64s(c, "indices", {static_cast<hsize_t>(indices.size())}, indices.data());
-      h5::write_doubles(c, "values", {static_cast<hsize_t>(indices.size())}, csr.valuePtr());
+      h5::write_int64s(c, "indptr", {uN + 1}, indptr.data(), kStoreCompressed);
+      h5::write_int64s(c, "indices", {static_cast<hsize_t>(indices.size())}, indices.data(),
+                       kStoreCompressed);
+      h5::write_doubles(c, "values", {static_cast<hsize_t>(indices.size())}, csr.valuePtr(),
+                        kStoreCompressed);
     }
   }
   {
     h5::Handle g = h5::create_group(file, "modes");
-    h5::write_doubles(g, "eigenvalues", {un}, body.eigenvalues.data());
+    h5::write_doubles(g, "eigenvalues", {un}, body.eigenvalues.data(), kStoreCompressed);
     RowMat shapes = body.modes;
-    h5::write_doubles(g, "shapes", {3 * uN, un}, shapes.data());
-    h5::write_doubles(g, "damping", {un}, body.damping.data());
+    h5::write_doubles(g, "shapes", {3 * uN, un}, shapes.data(), kStoreCompressed);
+    h5::write_doubles(g, "damping", {un}, body.damping.data(), kStoreCompressed);
     std::vector<int> kinds;
     for (ModeKind k : body.kinds) kinds.push_back(static_cast<int>(k));
-    h5::write_int32s(g, "kind", {un}, kinds.data());
+    h5::write_int32s(g, "kind", {un}, kinds.data(), kStoreCompressed);
   }
   {
     h5::Handle g = h5::create_group(file, "sets");
     for (const auto& [name, ids] : body.node_sets) {
       std::vector<long long> v(ids.begin(), ids.end());
-      h5::write_int64s(g, name, {static_cast<hsize_t>(v.size())}, v.data());
+      h5::write_int64s(g, name, {static_cast<hsize_t>(v.size())}, v.data(), kStoreCompressed);
     }
   }
   if (body.invariants) {
     const ModalInvariants& inv = *body.invariants;
     h5::Handle g = h5::create_group(file, "invariants");
     RowMat S = inv.S;
-    h5::write_doubles(g, "S", {3, un}, S.data());
+    h5::write_doubles(g, "S", {3, un}, S.data(), kStoreCompressed);
     std::vector<double> p, M;
     p.reserve(9 * n);
     M.reserve(9 * static_cast<std::size_t>(n) * n);
@@ -172,18 +179,18 @@ void write_body(hid_t file, const ModalBody& body) {
         const RowMat Mab = inv.M[a][b];
         M.insert(M.end(), Mab.data(), Mab.data() + Mab.size());
       }
-    h5::write_doubles(g, "p", {3, 3, un}, p.data());
-    h5::write_doubles(g, "M", {3, 3, un, un}, M.data());
+    h5::write_doubles(g, "p", {3, 3, un}, p.data(), kStoreCompressed);
+    h5::write_doubles(g, "M", {3, 3, un, un}, M.data(), kStoreCompressed);
   }
   if (body.mass_props) {
     const MassProperties& mp = *body.mass_props;
     h5::Handle g = h5::create_group(file, "mass_properties");
-    h5::write_doubles(g, "mass", {1}, &mp.mass);
-    h5::write_doubles(g, "centre_of_mass", {3}, mp.com.data());
+    h5::write_doubles(g, "mass", {1}, &mp.mass, kStoreCompressed);
+    h5::write_doubles(g, "centre_of_mass", {3}, mp.com.data(), kStoreCompressed);
     const Eigen::Matrix<double, 3, 3, Eigen::RowMajor> J = mp.inertia, E = mp.principal_axes;
-    h5::write_doubles(g, "inertia", {3, 3}, J.data());
-    h5::write_doubles(g, "principal_moments", {3}, mp.principal_moments.data());
-    h5::write_doubles(g, "principal_axes", {3, 3}, E.data());
+    h5::write_doubles(g, "inertia", {3, 3}, J.data(), kStoreCompressed);
+    h5::write_doubles(g, "principal_moments", {3}, mp.principal_moments.data(), kStoreCompressed);
+    h5::write_doubles(g, "principal_axes", {3, 3}, E.data(), kStoreCompressed);
   }
 }
 

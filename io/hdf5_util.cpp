@@ -29,11 +29,11 @@ bool deflate_available() {
   return avail;
 }
 
-Handle dataset_props(const std::vector<hsize_t>& dims) {
+Handle dataset_props(const std::vector<hsize_t>& dims, bool compress) {
   Handle plist(H5Pcreate(H5P_DATASET_CREATE), H5Pclose);
   hsize_t total = 1;
   for (hsize_t d : dims) total *= d;
-  if (total >= kCompressMinElements && deflate_available()) {
+  if (compress && total >= kCompressMinElements && deflate_available()) {
     std::vector<hsize_t> chunk(dims);
     hsize_t inner = 1;
     for (std::size_t i = 1; i < dims.size(); ++i) inner *= dims[i];
@@ -46,9 +46,9 @@ Handle dataset_props(const std::vector<hsize_t>& dims) {
 }
 
 void write_raw(hid_t loc, const std::string& name, const std::vector<hsize_t>& dims,
-               hid_t file_type, hid_t mem_type, const void* data) {
+               hid_t file_type, hid_t mem_type, const void* data, bool compress) {
   Handle space(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr), H5Sclose);
-  Handle plist = dataset_props(dims);
+  Handle plist = dataset_props(dims, compress);
   Handle dset(H5Dcreate2(loc, name.c_str(), file_type, space, H5P_DEFAULT, plist, H5P_DEFAULT),
               H5Dclose);
   if (!dset.valid()) throw Failure("cannot create " + dset_name(name));
@@ -74,6 +74,20 @@ std::vector<hsize_t> dataset_dims(hid_t dset, const std::string& name) {
   return dims;
 }
 
+// The bytes of `obj`'s file, 0 if unknown.
+long double file_bytes(hid_t obj) {
+  Handle f(H5Iget_file_id(obj), H5Fclose);
+  hsize_t size = 0;
+  if (!f.valid() || H5Fget_filesize(f, &size) < 0) return 0.0L;
+  return static_cast<long double>(size);
+}
+
+// True if `bytes` cannot be in obj's file (its size known and smaller).
+bool exceeds_file(long double bytes, hid_t obj) {
+  const long double file = file_bytes(obj);
+  return file > 0.0L && bytes > file;
+}
+
 template <class T>
 std::vector<T> read_numeric(hid_t loc, const std::string& name, std::vector<hsize_t>& dims,
                             hid_t mem_type, bool integer_only) {
@@ -90,7 +104,7 @@ std::vector<T> read_numeric(hid_t loc, const std::string& name, std::vector<hsiz
   long double declared = 1.0L;
   for (hsize_t d : dims) declared *= static_cast<long double>(d);
   const long double bytes = declared * static_cast<long double>(sizeof(T));
-  const long double stored = static_cast<long double>(H5Dget_storage_size(dset));
+  const long double stored = stored_bytes(dset);
   if (declared > static_cast<long double>(PTRDIFF_MAX / static_cast<std::ptrdiff_t>(sizeof(T))) ||
       (bytes > 65536.0L && bytes > 1100.0L * stored))
     throw Failure(dset_name(name) + " declares " + std::to_string(static_cast<double>(declared)) +
@@ -102,6 +116,13 @@ std::vector<T> read_numeric(hid_t loc, const std::string& name, std::vector<hsiz
   if (total > 0 && H5Dread(dset, mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()) < 0)
     throw Failure(dset_name(name) + " cannot be read (file truncated or corrupt?)");
   return out;
+}
+
+// Refuses an attribute that holds other than exactly one value (it is read into one).
+void expect_single(hid_t attr, const std::string& name) {
+  Handle space(H5Aget_space(attr), H5Sclose);
+  if (!space.valid() || H5Sget_simple_extent_npoints(space) != 1)
+    throw Failure(attr_name(name) + " must hold a single value");
 }
 
 Handle open_attribute(hid_t obj, const std::string& name) {
@@ -117,6 +138,12 @@ herr_t collect_link(hid_t, const char* name, const H5L_info_t*, void* data) {
 }
 
 }  // namespace
+
+long double stored_bytes(hid_t dset) {
+  const long double stored = static_cast<long double>(H5Dget_storage_size(dset));
+  const long double file = file_bytes(dset);
+  return file > 0.0L && file < stored ? file : stored;
+}
 
 Handle& Handle::operator=(Handle&& o) noexcept {
   if (this != &o) {
@@ -229,9 +256,7 @@ std::string read_string_attribute(hid_t obj, const std::string& name) {
   Handle a = open_attribute(obj, name);
   Handle ftype(H5Aget_type(a), H5Tclose);
   if (H5Tget_class(ftype) != H5T_STRING) throw Failure(attr_name(name) + " is not a string");
-  Handle space(H5Aget_space(a), H5Sclose);
-  if (H5Sget_simple_extent_npoints(space) != 1)
-    throw Failure(attr_name(name) + " must be a single string");
+  expect_single(a, name);
   if (H5Tis_variable_str(ftype) > 0) {
     Handle mtype = string_type();
     char* p = nullptr;
@@ -241,6 +266,10 @@ std::string read_string_attribute(hid_t obj, const std::string& name) {
     return s;
   }
   const std::size_t size = H5Tget_size(ftype);
+  // A fixed-size string longer than the file cannot be stored in it (a forged size).
+  if (exceeds_file(static_cast<long double>(size), a))
+    throw Failure(attr_name(name) + " declares a string of " + std::to_string(size) +
+                  " bytes, more than the file holds (corrupt file?)");
   Handle mtype(H5Tcopy(H5T_C_S1), H5Tclose);
   H5Tset_size(mtype, size + 1);
   std::vector<char> buf(size + 1, '\0');
@@ -252,6 +281,7 @@ long long read_int_attribute(hid_t obj, const std::string& name) {
   Handle a = open_attribute(obj, name);
   Handle ftype(H5Aget_type(a), H5Tclose);
   if (H5Tget_class(ftype) != H5T_INTEGER) throw Failure(attr_name(name) + " is not an integer");
+  expect_single(a, name);
   long long v = 0;
   if (H5Aread(a, H5T_NATIVE_LLONG, &v) < 0) throw Failure(attr_name(name) + " cannot be read");
   return v;
@@ -262,24 +292,25 @@ double read_double_attribute(hid_t obj, const std::string& name) {
   Handle ftype(H5Aget_type(a), H5Tclose);
   const H5T_class_t cls = H5Tget_class(ftype);
   if (cls != H5T_FLOAT && cls != H5T_INTEGER) throw Failure(attr_name(name) + " is not a number");
+  expect_single(a, name);
   double v = 0;
   if (H5Aread(a, H5T_NATIVE_DOUBLE, &v) < 0) throw Failure(attr_name(name) + " cannot be read");
   return v;
 }
 
 void write_doubles(hid_t loc, const std::string& name, const std::vector<hsize_t>& dims,
-                   const double* data) {
-  write_raw(loc, name, dims, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, data);
+                   const double* data, bool compress) {
+  write_raw(loc, name, dims, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, data, compress);
 }
 
 void write_int64s(hid_t loc, const std::string& name, const std::vector<hsize_t>& dims,
-                  const long long* data) {
-  write_raw(loc, name, dims, H5T_STD_I64LE, H5T_NATIVE_LLONG, data);
+                  const long long* data, bool compress) {
+  write_raw(loc, name, dims, H5T_STD_I64LE, H5T_NATIVE_LLONG, data, compress);
 }
 
 void write_int32s(hid_t loc, const std::string& name, const std::vector<hsize_t>& dims,
-                  const int* data) {
-  write_raw(loc, name, dims, H5T_STD_I32LE, H5T_NATIVE_INT, data);
+                  const int* data, bool compress) {
+  write_raw(loc, name, dims, H5T_STD_I32LE, H5T_NATIVE_INT, data, compress);
 }
 
 void write_strings(hid_t loc, const std::string& name, const std::vector<std::string>& values) {
@@ -324,6 +355,9 @@ std::vector<std::string> read_strings(hid_t loc, const std::string& name) {
     return out;
   }
   const std::size_t size = H5Tget_size(ftype);
+  if (exceeds_file(static_cast<long double>(n) * size, dset))
+    throw Failure(dset_name(name) + " declares " + std::to_string(n) + " strings of " +
+                  std::to_string(size) + " bytes, more than the file holds (corrupt file?)");
   Handle mtype(H5Tcopy(H5T_C_S1), H5Tclose);
   H5Tset_size(mtype, size);
   std::vector<char> buf(n * size, '\0');

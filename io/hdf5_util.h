@@ -78,14 +78,19 @@ std::string read_string_attribute(hid_t obj, const std::string& name);
 long long read_int_attribute(hid_t obj, const std::string& name);
 double read_double_attribute(hid_t obj, const std::string& name);
 
-/// Fixed-size dataset; compressed (chunked, shuffle + deflate 4) when large enough.
+/// Fixed-size dataset; with `compress`, compressed (chunked, shuffle + deflate 4)
+/// when large enough, otherwise contiguous.
 void write_doubles(hid_t loc, const std::string& name, const std::vector<hsize_t>& dims,
-                   const double* data);
+                   const double* data, bool compress = true);
 void write_int64s(hid_t loc, const std::string& name, const std::vector<hsize_t>& dims,
-                  const long long* data);
+                  const long long* data, bool compress = true);
 void write_int32s(hid_t loc, const std::string& name, const std::vector<hsize_t>& dims,
-                  const int* data);
+                  const int* data, bool compress = true);
 void write_strings(hid_t loc, const std::string& name, const std::vector<std::string>& values);
+
+/// Bytes stored for a dataset: HDF5's storage size, at most the file's size
+/// (a corrupt or forged layout may claim more than the file holds).
+long double stored_bytes(hid_t dset);
 
 /// Reads a whole dataset (converted to the requested type) and its dims.
 std::vector<double> read_doubles(hid_t loc, const std::string& name, std::vector<hsize_t>& dims);

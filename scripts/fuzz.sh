@@ -64,11 +64,18 @@ export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1"
 # The first frame of the report's stack that is not the sanitizer/fuzzer runtime
 # or the C/C++ runtime, e.g. "in H5F__super_read (/usr/lib/.../libhdf5_serial.so.103+0x...)".
 # libc's string functions are left out by name and by source (a symbolized
-# "__memcpy_avx512_unaligned_erms string/../sysdeps/..." names no library): the
+# "__memcpy_avx512_unaligned_erms string/../sysdeps/..." names no library, and
+# ASan's own strdup, strlen, memcpy ... are frames of the fuzzer binary): the
 # frame below them is the one that passed the bad pointer.
+# A time-out's stack starts with libFuzzer's alarm handler (frames of the
+# harness binary, often unsymbolized) and the signal frame in libc: what ran
+# when the alarm came is below that frame.
 stack_top() {
   grep -E '^ *#[0-9]+ 0x[0-9a-f]+ ' "$1" |
-    grep -vE ' in (__interceptor_|__asan|__sanitizer|__ubsan|__lsan|fuzzer::|abort|raise|__GI_|malloc|calloc|realloc|free|operator new|operator delete|std::terminate|__cxa_|__gnu_cxx::__verbose|_Unwind|LLVMFuzzer|__libc|gsignal|__mem(cpy|move|set|cmp)|__str)|libclang_rt|compiler-rt|libc\.so|libstdc\+\+\.so|libgcc_s|sysdeps/' |
+    if grep -qE 'ALARM: working on the last Unit|libFuzzer: timeout' "$1"; then
+      awk '{ l[NR] = $0 } /libc\.so/ && !s { s = NR } END { for (i = s + 1; i <= NR; i++) print l[i] }'
+    else cat; fi |
+    grep -vE ' in (__interceptor_|__asan|__sanitizer|__ubsan|__lsan|fuzzer::|abort|raise|__GI_|malloc|calloc|realloc|free|operator new|operator delete|std::terminate|__cxa_|__gnu_cxx::__verbose|_Unwind|LLVMFuzzer|__libc|gsignal|__mem(cpy|move|set|cmp)|__str|(mem(cpy|move|set|cmp|chr)|bcmp|str(n?dup|n?len|n?cmp|n?cpy|n?cat|r?chr|casecmp))\b)|libclang_rt|compiler-rt|libc\.so|libstdc\+\+\.so|libgcc_s|sysdeps/' |
     head -1 | sed -E 's/^ *#[0-9]+ 0x[0-9a-f]+ //' || true
 }
 # One line: what the report says (first matching line).
@@ -125,10 +132,15 @@ for t in $targets; do
     for a in "${arts[@]}"; do
       kind="$(basename "$a" | sed -E 's/-.*//')"   # crash, leak, timeout, oom, slow-unit
       [ "$kind" = slow ] && continue
-      # Re-run the input alone for a clean report and stack.
+      # Re-run the input alone for a clean report and stack. An out-of-memory
+      # report names no allocation (the RSS watcher fires wherever the program
+      # is), so an oom input is re-run with a malloc limit of 64 MB: the first
+      # allocation that large stops it with its own stack, which tells whose it is.
       rlog="$a.log"
+      limit=()
+      [ "$kind" = oom ] && limit=(-malloc_limit_mb=64)
       ASAN_OPTIONS="$ASAN_OPTIONS:fast_unwind_on_malloc=0" EVAS_FUZZ_SKIP=/dev/null \
-        TMPDIR="$work/tmp" timeout 60 "$bin" -rss_limit_mb=2048 -timeout=10 \
+        TMPDIR="$work/tmp" timeout 60 "$bin" -rss_limit_mb=2048 "${limit[@]}" -timeout=10 \
         "$a" >"$rlog" 2>&1 || true
       top="$(stack_top "$rlog")"
       [ -n "$top" ] || top="$(stack_top "$log.part")"
