@@ -7,6 +7,7 @@
 #include <functional>
 #include <iomanip>
 #include <limits>
+#include <set>
 #include <sstream>
 
 #include "integrators/common.h"
@@ -216,6 +217,31 @@ const std::vector<SettingInfo>& integrator_settings() {
     return v;
   }();
   return infos;
+}
+
+std::vector<std::string> settings_not_read_by(const std::string& integrator) {
+  static const std::set<std::string> builtin = {"ida", "cvode", "generalized-alpha",
+                                                "linear-acceleration", "radau"};
+  std::vector<std::string> keys;
+  if (!builtin.count(integrator)) return keys;
+  for (const auto& info : integrator_settings()) {
+    // "ida, cvode" or "ida: linear_solver=second-order": the methods before ':'
+    std::string list = info.applies.substr(0, info.applies.find(':'));
+    bool methods_only = true, named = false;
+    std::size_t pos = 0;
+    while (pos <= list.size()) {
+      std::size_t comma = list.find(',', pos);
+      if (comma == std::string::npos) comma = list.size();
+      std::string word = list.substr(pos, comma - pos);
+      word.erase(0, word.find_first_not_of(' '));
+      word.erase(word.find_last_not_of(' ') + 1);
+      if (!builtin.count(word)) methods_only = false;
+      if (word == integrator) named = true;
+      pos = comma + 1;
+    }
+    if (methods_only && !named) keys.push_back(info.key);
+  }
+  return keys;
 }
 
 void set_integrator_setting(IntegratorSettings& s, const std::string& key,

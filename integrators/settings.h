@@ -44,6 +44,12 @@ bool takes_fixed_steps(const IntegratorSettings& s);
 /// default-constructed IntegratorSettings (a compact label for tables).
 std::string settings_label(const IntegratorSettings& s);
 
+/// Keys of the settings the built-in method `integrator` does not read: those
+/// whose table entry names built-in methods only, not this one (a setting
+/// whose use depends on another, e.g. "iteration=anderson", is not listed).
+/// Empty for a plug-in, whose reads are its own.
+std::vector<std::string> settings_not_read_by(const std::string& integrator);
+
 /// Markdown table of every setting (for --help-settings and the user guide).
 std::string settings_reference();
 

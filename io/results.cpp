@@ -320,6 +320,12 @@ void write_summary_json(const std::string& path, const RunSummary& s) {
       << (k + 1 < table.size() ? ",\n" : "\n");
   }
   o << "  },\n";
+  // settings listed above that this method does not read (e.g. IDA's
+  // max_steps in a generalized-alpha run), so that no one reads meaning into them
+  o << "  \"settings_not_read\": [";
+  const std::vector<std::string> unread = settings_not_read_by(s.integrator);
+  for (std::size_t k = 0; k < unread.size(); ++k) o << (k ? ", " : "") << json_string(unread[k]);
+  o << "],\n";
   o << "  \"grid\": " << json_string(s.grid) << ",\n";
   o << "  \"status\": " << json_string(s.status) << ",\n";
   o << "  \"t_start\": " << json_number(s.t_start) << ",\n";

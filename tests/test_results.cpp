@@ -3,10 +3,12 @@
 #include <gtest/gtest.h>
 #include <hdf5.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <sstream>
 
+#include "integrators/settings.h"
 #include "io/results.h"
 
 using namespace evas;
@@ -179,6 +181,26 @@ TEST(Results, SummaryJson) {
             std::string::npos)
       << text;
   EXPECT_NE(text.find("\"min\": null"), std::string::npos);
+  // settings IDA does not read are named (the table: "generalized-alpha" for
+  // rho_inf, "cvode" for method), those it reads are not
+  EXPECT_NE(text.find("\"settings_not_read\": [\"step\", \"min_step\", \"step_control\", "
+                      "\"iteration\", \"balance_tol\", \"max_iterations\", \"method\", "
+                      "\"rho_inf\"]"),
+            std::string::npos)
+      << text;
+}
+
+TEST(Results, SettingsNotReadByEachMethod) {
+  auto has = [](const std::vector<std::string>& v, const std::string& k) {
+    return std::find(v.begin(), v.end(), k) != v.end();
+  };
+  const auto ga = settings_not_read_by("generalized-alpha");
+  EXPECT_TRUE(has(ga, "max_steps") && has(ga, "jacobian_age") && has(ga, "method"));
+  EXPECT_FALSE(has(ga, "rho_inf") || has(ga, "step") || has(ga, "rtol") || has(ga, "atol"));
+  EXPECT_FALSE(has(ga, "anderson_depth"));  // depends on iteration, not on the method
+  const auto cv = settings_not_read_by("cvode");
+  EXPECT_TRUE(has(cv, "rho_inf") && has(cv, "jacobian_age") && !has(cv, "method"));
+  EXPECT_TRUE(settings_not_read_by("my-plugin").empty());
 }
 
 TEST(Results, ReadErrorsNameTheFile) {
