@@ -1,5 +1,6 @@
 #include "solver/modal_body.h"
 
+#include <algorithm>
 #include <cmath>
 #include <iomanip>
 #include <sstream>
@@ -21,12 +22,22 @@ int ModalBody::node_index(long id) const {
 }
 
 std::vector<int> ModalBody::node_indices(const std::vector<long>& ids) const {
+  std::vector<int> out;
+  out.reserve(ids.size());
+  // FE bodies list their nodes in increasing id: a binary search per node,
+  // without building a table of every node for each set
+  if (std::is_sorted(node_ids.begin(), node_ids.end())) {
+    for (long id : ids) {
+      const auto it = std::lower_bound(node_ids.begin(), node_ids.end(), id);
+      if (it == node_ids.end() || *it != id) missing_node(id);
+      out.push_back(static_cast<int>(it - node_ids.begin()));
+    }
+    return out;
+  }
   std::unordered_map<long, int> row;
   row.reserve(node_ids.size());
   for (std::size_t i = 0; i < node_ids.size(); ++i)
     row.emplace(node_ids[i], static_cast<int>(i));  // the first of a repeated id, as node_index
-  std::vector<int> out;
-  out.reserve(ids.size());
   for (long id : ids) {
     const auto it = row.find(id);
     if (it == row.end()) missing_node(id);

@@ -100,24 +100,34 @@ TEST(Markers, MomentOnAMarkerWithoutRotationIsRejected) {
   }
 }
 
-// ModalBody::node_indices (one hash table for a set's nodes) against
-// node_index (a linear search), for a set large enough to take the table,
-// and the same InputError for an id the body does not have.
+// ModalBody::node_indices (a binary search when the body's ids increase, as
+// an FE body's do, else one hash table) against node_index (a linear search),
+// and the same InputError for an id the body does not have: below, between and
+// above the body's ids.
 TEST(Markers, NodeIndicesMatchNodeIndex) {
-  ModalBody b = test_bodies::random_body(40, 2, 7);
-  for (std::size_t i = 0; i < b.node_ids.size(); ++i)
-    b.node_ids[i] = 1000 + 7 * static_cast<long>(b.node_ids.size() - i);  // not the row order
-  std::vector<long> ids;
-  for (int i = 39; i >= 0; i -= 3) ids.push_back(b.node_ids[static_cast<std::size_t>(i)]);
-  ASSERT_GE(ids.size(), 8u);
-  const std::vector<int> rows = b.node_indices(ids);
-  ASSERT_EQ(rows.size(), ids.size());
-  for (std::size_t k = 0; k < ids.size(); ++k) EXPECT_EQ(rows[k], b.node_index(ids[k])) << k;
-  ids.push_back(5);
-  try {
-    b.node_indices(ids);
-    ADD_FAILURE() << "no error for node 5";
-  } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("no node with id 5"), std::string::npos) << e.what();
+  for (const bool increasing : {false, true}) {
+    ModalBody b = test_bodies::random_body(40, 2, 7);
+    const long N = static_cast<long>(b.node_ids.size());
+    for (long i = 0; i < N; ++i)
+      b.node_ids[static_cast<std::size_t>(i)] = 1000 + 7 * (increasing ? i : N - i);
+    std::vector<long> ids;
+    for (int i = 39; i >= 0; i -= 3) ids.push_back(b.node_ids[static_cast<std::size_t>(i)]);
+    ASSERT_GE(ids.size(), 8u);
+    const std::vector<int> rows = b.node_indices(ids);
+    ASSERT_EQ(rows.size(), ids.size());
+    for (std::size_t k = 0; k < ids.size(); ++k)
+      EXPECT_EQ(rows[k], b.node_index(ids[k])) << k << (increasing ? " increasing" : "");
+    for (const long missing : {5L, 1003L, 99999L}) {
+      std::vector<long> bad = ids;
+      bad.push_back(missing);
+      try {
+        b.node_indices(bad);
+        ADD_FAILURE() << "no error for node " << missing;
+      } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("no node with id " + std::to_string(missing)),
+                  std::string::npos)
+            << e.what();
+      }
+    }
   }
 }
