@@ -135,6 +135,8 @@ class Integrator {
 
 /// Names accepted by make_integrator: the built-in five, then those registered.
 std::vector<std::string> integrator_names();
+/// The built-in five alone (no plug-in).
+std::vector<std::string> builtin_integrator_names();
 /// Makes a new integrator (one per run).
 using IntegratorFactory = std::function<std::unique_ptr<Integrator>()>;
 /// Adds an integrator under `name` (1 to 64 of a-z, 0-9, '-', '_', '.'), e.g.

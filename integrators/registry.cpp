@@ -18,8 +18,8 @@ struct Entry {
   std::string description;
 };
 
-std::vector<Entry>& registry() {
-  static std::vector<Entry> table = {
+const std::vector<Entry>& builtin_entries() {
+  static const std::vector<Entry> table = {
       {"ida", &make_ida_integrator, "IDA (SUNDIALS): variable-order BDF on the implicit residual"},
       {"cvode", &make_cvode_integrator, "CVODE (SUNDIALS): BDF + Newton or Adams"},
       {"generalized-alpha", &make_generalized_alpha_integrator,
@@ -29,6 +29,12 @@ std::vector<Entry>& registry() {
       {"radau", &make_radau_integrator,
        "Radau IIA, 3 stages, order 5 (Hairer-Wanner), simplified Newton on n x n matrices"},
   };
+  return table;
+}
+
+// the built-in ones first, then the plug-ins'
+std::vector<Entry>& registry() {
+  static std::vector<Entry> table = builtin_entries();
   return table;
 }
 
@@ -65,6 +71,12 @@ std::vector<std::string> integrator_names() {
   std::lock_guard<std::mutex> lock(registry_mutex());
   std::vector<std::string> names;
   for (const auto& entry : registry()) names.push_back(entry.name);
+  return names;
+}
+
+std::vector<std::string> builtin_integrator_names() {
+  std::vector<std::string> names;
+  for (const auto& entry : builtin_entries()) names.push_back(entry.name);
   return names;
 }
 

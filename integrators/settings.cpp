@@ -1,13 +1,13 @@
 // The integrator settings table (settings.h).
 #include "integrators/settings.h"
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
 #include <functional>
 #include <iomanip>
 #include <limits>
-#include <set>
 #include <sstream>
 
 #include "integrators/common.h"
@@ -220,24 +220,21 @@ const std::vector<SettingInfo>& integrator_settings() {
 }
 
 std::vector<std::string> settings_not_read_by(const std::string& integrator) {
-  static const std::set<std::string> builtin = {"ida", "cvode", "generalized-alpha",
-                                                "linear-acceleration", "radau"};
+  const std::vector<std::string> builtin = builtin_integrator_names();
+  auto is_builtin = [&](const std::string& w) {
+    return std::find(builtin.begin(), builtin.end(), w) != builtin.end();
+  };
   std::vector<std::string> keys;
-  if (!builtin.count(integrator)) return keys;
+  if (!is_builtin(integrator)) return keys;
   for (const auto& info : integrator_settings()) {
     // "ida, cvode" or "ida: linear_solver=second-order": the methods before ':'
     std::string list = info.applies.substr(0, info.applies.find(':'));
+    std::replace(list.begin(), list.end(), ',', ' ');
+    std::istringstream words(list);
     bool methods_only = true, named = false;
-    std::size_t pos = 0;
-    while (pos <= list.size()) {
-      std::size_t comma = list.find(',', pos);
-      if (comma == std::string::npos) comma = list.size();
-      std::string word = list.substr(pos, comma - pos);
-      word.erase(0, word.find_first_not_of(' '));
-      word.erase(word.find_last_not_of(' ') + 1);
-      if (!builtin.count(word)) methods_only = false;
-      if (word == integrator) named = true;
-      pos = comma + 1;
+    for (std::string w; words >> w;) {
+      methods_only = methods_only && is_builtin(w);
+      named = named || w == integrator;
     }
     if (methods_only && !named) keys.push_back(info.key);
   }

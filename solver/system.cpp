@@ -216,6 +216,7 @@ void System::build_row_sets() {
   // loads of time alone (the prescribed piston): once per t into ftime_ on the
   // rows of their markers; the other elements' loads on the rows of theirs
   timed_.clear();
+  loaded_.clear();
   is_timed_.assign(elements.size(), 0);
   for (std::size_t e = 0; e < elements.size(); ++e) {
     const Element& el = *elements[e];
@@ -223,6 +224,8 @@ void System::build_row_sets() {
     if (timed) {
       timed_.push_back(static_cast<int>(e));
       is_timed_[e] = 1;
+    } else if (el.inertia_rank() == 0) {
+      loaded_.push_back(static_cast<int>(e));
     }
     if (el.inertia_rank() == 0)
       for (int m : el.markers()) (timed ? timed_load : loaded)[m] = kAll;
@@ -369,9 +372,7 @@ void System::force_impl(double t, const double* q, const double* v, double* f, b
     }
   }
   for (auto& l : bload_) l.setZero();
-  for (std::size_t e = 0; e < ework_.size(); ++e)
-    if (model_.elements()[e]->inertia_rank() == 0 && !is_timed_[e])
-      load_element(static_cast<int>(e), t);
+  for (int e : loaded_) load_element(e, t);
   flush_loads(f, lset_);
   if (rank_ > 0) solve_inertia(t, f);
 }

@@ -192,8 +192,8 @@ class System : public Problem {
   // Elements whose loads depend on t alone (not state_dependent(), no inertia, no
   // internal states): their generalised loads ftime_ at t_time_, computed once per
   // t on the rows of their markers (tset_); the other elements' loads on the rows
-  // of theirs (lset_).
-  std::vector<int> timed_;
+  // of theirs (lset_), each residual: loaded_ (no inertia, not of time alone).
+  std::vector<int> timed_, loaded_;
   std::vector<char> is_timed_;
   Vec ftime_;
   double t_time_ = std::numeric_limits<double>::quiet_NaN();
