@@ -41,10 +41,6 @@ constexpr bool kStoreCompressed = false;
 // Limits checked before a dataset is read, so that a corrupt or hostile file
 // is refused with a message instead of an allocation failure.
 constexpr long double kMaxValues = 2147483647.0L;  // per dataset: Eigen's int indices
-// Deflate cannot shrink data by more than about 1032:1; a dataset that declares
-// more bytes than that over what the file stores for it is truncated or forged.
-constexpr long double kMaxCompression = 1100.0L;
-constexpr long double kSmallBytes = 65536.0L;  // below this no storage check
 
 std::string bytes_text(long double b) {
   char buf[64];
@@ -80,7 +76,7 @@ std::vector<hsize_t> checked_dims(hid_t file, const std::string& name) {
   h5::Handle type(H5Dget_type(d), H5Tclose);
   const long double bytes = total * (type.valid() ? H5Tget_size(type) : 8);
   const long double stored = h5::stored_bytes(d);
-  if (bytes > kSmallBytes && bytes > kMaxCompression * stored)
+  if (h5::storage_implausible(bytes, stored))
     throw h5::Failure("dataset '" + name + "' declares shape " + shape_text(dims) + " (" +
                       bytes_text(bytes) + ") but the file stores only " + bytes_text(stored) +
                       " for it: the file is truncated or corrupt");

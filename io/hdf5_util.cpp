@@ -99,14 +99,13 @@ std::vector<T> read_numeric(hid_t loc, const std::string& name, std::vector<hsiz
                   (integer_only ? "integers" : "numbers") + ")");
   dims = dataset_dims(dset, name);
   // A corrupt or hostile file may declare any shape: refuse one whose values
-  // could not be held, or that claims far more data than the file stores
-  // (deflate reaches about 1000:1 on constant data; 1100 leaves a margin).
+  // could not be held, or that claims far more data than the file stores.
   long double declared = 1.0L;
   for (hsize_t d : dims) declared *= static_cast<long double>(d);
   const long double bytes = declared * static_cast<long double>(sizeof(T));
   const long double stored = stored_bytes(dset);
   if (declared > static_cast<long double>(PTRDIFF_MAX / static_cast<std::ptrdiff_t>(sizeof(T))) ||
-      (bytes > 65536.0L && bytes > 1100.0L * stored))
+      storage_implausible(bytes, stored))
     throw Failure(dset_name(name) + " declares " + std::to_string(static_cast<double>(declared)) +
                   " values but the file stores only " +
                   std::to_string(static_cast<long long>(stored)) + " bytes (corrupt file?)");
@@ -138,6 +137,10 @@ herr_t collect_link(hid_t, const char* name, const H5L_info_t*, void* data) {
 }
 
 }  // namespace
+
+bool storage_implausible(long double bytes, long double stored) {
+  return bytes > 65536.0L && bytes > 1100.0L * stored;
+}
 
 long double stored_bytes(hid_t dset) {
   const long double stored = static_cast<long double>(H5Dget_storage_size(dset));

@@ -91,6 +91,10 @@ void write_strings(hid_t loc, const std::string& name, const std::vector<std::st
 /// Bytes stored for a dataset: HDF5's storage size, at most the file's size
 /// (a corrupt or forged layout may claim more than the file holds).
 long double stored_bytes(hid_t dset);
+/// True when a dataset of `bytes` declared cannot come from `stored` bytes of
+/// the file: above 64 kB and more than 1100 times what is stored (deflate
+/// reaches about 1000:1 on constant data): a truncated or forged file.
+bool storage_implausible(long double bytes, long double stored);
 
 /// Reads a whole dataset (converted to the requested type) and its dims.
 std::vector<double> read_doubles(hid_t loc, const std::string& name, std::vector<hsize_t>& dims);
