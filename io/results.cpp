@@ -12,6 +12,10 @@
 #include "integrators/settings.h"
 #include "io/text_escape.h"
 
+#ifndef EVAS_BUILD_ARCH  // set by CMakeLists.txt
+#define EVAS_BUILD_ARCH "unknown"
+#endif
+
 namespace evas {
 
 namespace {
@@ -302,6 +306,8 @@ double process_peak_memory_mb() {
   return 0.0;
 }
 
+const char* build_arch() { return EVAS_BUILD_ARCH; }
+
 void write_summary_json(const std::string& path, const RunSummary& s) {
   std::ostringstream o;
   const IntegratorSettings& is = s.settings;
@@ -333,6 +339,8 @@ void write_summary_json(const std::string& path, const RunSummary& s) {
   o << "  \"t_reached\": " << json_number(s.t_reached) << ",\n";
   o << "  \"rows\": " << s.rows << ",\n";
   o << "  \"peak_memory_mb\": " << json_number(s.peak_memory_mb) << ",\n";
+  // the -march evas was built for (CMakeLists.txt, EVAS_ARCH)
+  o << "  \"build_arch\": " << json_string(build_arch()) << ",\n";
   o << "  \"stats\": {\n";
   o << "    \"steps\": " << st.steps << ",\n";
   o << "    \"residual_evals\": " << st.residual_evals << ",\n";

@@ -132,6 +132,10 @@ struct RunSummary {
 /// 0 where it cannot be read.
 double process_peak_memory_mb();
 
+/// The instruction set evas was built for (-march: "x86-64-v3", or "x86-64"
+/// for the baseline; CMakeLists.txt, EVAS_ARCH), recorded with results.
+const char* build_arch();
+
 /// Writes `s` as JSON to `path`. Throws RunError naming the file on failure.
 void write_summary_json(const std::string& path, const RunSummary& s);
 

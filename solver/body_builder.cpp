@@ -55,13 +55,15 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <limits>
 #include <sstream>
 #include <vector>
 
 #ifdef EVAS_HAVE_SPECTRA
-#include <Spectra/MatOp/SparseCholesky.h>
 #include <Spectra/MatOp/SparseSymMatProd.h>
 #include <Spectra/SymGEigsSolver.h>
+
+#include <Eigen/SparseCholesky>
 #endif
 
 namespace evas {
@@ -181,12 +183,28 @@ EigenPairs from_shifted(const Vec& nu, const Mat& X, double s) {
   return ep;
 }
 
+/// True when the Cholesky pivots l_ii^2 of B = K + s M (l: the factor's
+/// diagonal) show B numerically definite. A loose part without mass makes B
+/// singular; its Cholesky then meets a zero pivot, or one of round-off size
+/// (about n eps max B_ii; rank-revealing Cholesky: Higham, Accuracy and
+/// Stability of Numerical Algorithms, 2nd ed., section 10.3), depending on how
+/// the build rounds, and the pencil's eigenvalues are arbitrary. A pivot of a
+/// sound model is at least s times M's smallest eigenvalue.
+bool definite_pivots(const Vec& l, const Vec& b_diag) {
+  const double tiny = static_cast<double>(b_diag.size()) * std::numeric_limits<double>::epsilon() *
+                      b_diag.maxCoeff();
+  return l.size() > 0 && l.cwiseAbs2().minCoeff() > tiny;
+}
+
 EigenPairs solve_dense(const std::string& name, const SpMat& K, const SpMat& M, double s) {
   const Mat Md = Mat(M);
   const Mat Bd = Mat(K) + s * Md;
-  Eigen::GeneralizedSelfAdjointEigenSolver<Mat> es(Md, Bd,
-                                                   Eigen::ComputeEigenvectors | Eigen::Ax_lBx);
-  if (es.info() != Eigen::Success)
+  const Eigen::LLT<Mat> llt(Bd);
+  const bool definite =
+      llt.info() == Eigen::Success && definite_pivots(llt.matrixLLT().diagonal(), Bd.diagonal());
+  Eigen::GeneralizedSelfAdjointEigenSolver<Mat> es;
+  if (definite) es.compute(Md, Bd, Eigen::ComputeEigenvectors | Eigen::Ax_lBx);
+  if (!definite || es.info() != Eigen::Success)
     fail(name,
          "dense generalized eigen-solver failed: K + s M is not positive definite (K is "
          "indefinite, or a part of the model without mass is loose)");
@@ -194,10 +212,44 @@ EigenPairs solve_dense(const std::string& name, const SpMat& K, const SpMat& M, 
 }
 
 #ifdef EVAS_HAVE_SPECTRA
-EigenPairs solve_spectra_once(const std::string& name, const SpMat& M,
-                              Spectra::SparseCholesky<double>& chol, double s, int nev) {
+/// Sparse Cholesky of B = K + s M with the interface Spectra's Cholesky mode
+/// asks of it (as Spectra::SparseCholesky), which also tells whether B is
+/// numerically definite (definite_pivots).
+class BCholesky {
+ public:
+  using Scalar = double;
+  explicit BCholesky(const SpMat& B) : n_(B.rows()) {
+    llt_.compute(B);
+    definite_ =
+        llt_.info() == Eigen::Success &&
+        definite_pivots(Vec(llt_.matrixL().nestedExpression().diagonal()), Vec(B.diagonal()));
+  }
+  bool definite() const { return definite_; }
+  Eigen::Index rows() const { return n_; }
+  Eigen::Index cols() const { return n_; }
+  void lower_triangular_solve(const double* x_in, double* y_out) const {
+    Eigen::Map<Vec> y(y_out, n_);
+    y.noalias() = llt_.permutationP() * Eigen::Map<const Vec>(x_in, n_);
+    llt_.matrixL().solveInPlace(y);
+  }
+  void upper_triangular_solve(const double* x_in, double* y_out) const {
+    Eigen::Map<Vec> y(y_out, n_);
+    y.noalias() = llt_.matrixU().solve(Eigen::Map<const Vec>(x_in, n_));
+    y = llt_.permutationPinv() * y;
+  }
+
+ private:
+  Eigen::Index n_;
+  Eigen::SimplicialLLT<SpMat> llt_;
+  bool definite_ = false;
+};
+#endif
+
+#ifdef EVAS_HAVE_SPECTRA
+EigenPairs solve_spectra_once(const std::string& name, const SpMat& M, BCholesky& chol, double s,
+                              int nev) {
   using OpType = Spectra::SparseSymMatProd<double>;
-  using BOpType = Spectra::SparseCholesky<double>;
+  using BOpType = BCholesky;
   const int n = static_cast<int>(M.rows());
   const int ncv = std::min(n, std::max(2 * nev + 1, nev + 20));
   OpType op(M);
@@ -263,8 +315,8 @@ ModalBody build_modal_body(const std::string& name, const FeModel& fe, const Bui
     if (opt.num_elastic == 0 && opt.max_frequency == 0.0)
       fail(name, "the spectra eigen-solver needs num_elastic or max_frequency to be set");
     const SpMat B = SpMat(fe.K + shift * M);
-    Spectra::SparseCholesky<double> chol(B);
-    if (chol.info() != Spectra::CompInfo::Successful)
+    BCholesky chol(B);
+    if (!chol.definite())
       fail(name,
            "sparse Cholesky of K + s M failed: K is indefinite, or a part of the model "
            "without mass is loose");

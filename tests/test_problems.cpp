@@ -121,8 +121,13 @@ EndPoint solve(const std::string& name, const std::string& integrator, const std
 
 // IDA at rtol 1e-8, atol 1e-10 in each formulation: mixed-error digits at the
 // end point, floors a little below the values measured (2026-11-24, in the
-// comments). GGL reaches 5 digits on both test-set problems (the bar);
-// index-3 leaves v out of the error test and loses accuracy in it.
+// comments; for Andrews the portable build / the x86-64-v3 build, whose FMA
+// rounds differently). GGL reaches 5 digits on both test-set problems (the
+// issue's bar); index-3 leaves v out of the error test and loses accuracy in it.
+// Andrews' end-point digits scatter by about +-0.7 from one rtol to the next
+// and with the rounding (GGL, portable / x86-64-v3: 4.36 / 4.05 at rtol 3e-8,
+// 5.23 / 4.49 at 1e-8, 4.97 / 5.70 at 3e-9, 6.30 / 6.25 at 1e-9): its 5 digits
+// are asked at rtol 1e-9.
 TEST(Problems, IdaReachesTheReference) {
   struct Case {
     const char* name;
@@ -130,10 +135,10 @@ TEST(Problems, IdaReachesTheReference) {
     double floor;
   };
   const Case cases[] = {
-      {"andrews", "ggl", 5.0},       // 5.23
-      {"andrews", "index-2", 4.0},   // 4.36
-      {"andrews", "index-1", 3.7},   // 4.00
-      {"andrews", "index-3", 1.0},   // 1.40
+      {"andrews", "ggl", 4.2},       // 5.23 / 4.49
+      {"andrews", "index-2", 3.6},   // 4.36 / 3.84
+      {"andrews", "index-1", 3.7},   // 4.00 / 3.83
+      {"andrews", "index-3", 1.0},   // 1.40 / 1.17
       {"car-axis", "ggl", 5.0},      // 5.51
       {"car-axis", "index-2", 4.9},  // 5.18
       {"car-axis", "index-1", 4.3},  // 4.61
@@ -146,6 +151,7 @@ TEST(Problems, IdaReachesTheReference) {
   for (const Case& c : cases)
     EXPECT_GE(solve(c.name, "ida", c.form, 1e-8, 1e-10).s.mescd, c.floor)
         << c.name << " " << c.form;
+  EXPECT_GE(solve("andrews", "ida", "ggl", 1e-9, 1e-11).s.mescd, 5.0);  // 6.30 / 6.25
   // the multipliers of car axis (published) with GGL: 7.04 digits
   EXPECT_GE(solve("car-axis", "ida", "ggl", 1e-8, 1e-10).s.mescd_lambda, 6.5);
 }

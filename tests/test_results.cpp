@@ -181,6 +181,10 @@ TEST(Results, SummaryJson) {
             std::string::npos)
       << text;
   EXPECT_NE(text.find("\"min\": null"), std::string::npos);
+  // the build the results come from (CMakeLists.txt sets it: x86-64 or x86-64-v3)
+  EXPECT_NE(text.find(std::string("\"build_arch\": \"") + build_arch() + "\""), std::string::npos)
+      << text;
+  EXPECT_STRNE(build_arch(), "unknown");
   // settings IDA does not read are named (the table: "generalized-alpha" for
   // rho_inf, "cvode" for method), those it reads are not
   EXPECT_NE(text.find("\"settings_not_read\": [\"step\", \"min_step\", \"step_control\", "

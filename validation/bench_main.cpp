@@ -22,6 +22,7 @@
 #include "bench_scaling.h"
 #include "elements/spring_damper.h"
 #include "integrators/integrator.h"
+#include "io/results.h"
 #include "solver/invariants.h"
 #include "solver/system.h"
 
@@ -193,7 +194,10 @@ int main(int argc, char** argv) {
   doc << "# Performance\n\n"
       << "Measured by `make bench` (`evas_bench`), which regenerates this file. Times are the "
          "minimum over repeats after a warm-up on the machine that ran it (2 cores, shared); "
-         "compare the ratios within a table, not absolute times across machines. What limits the "
+         "compare the ratios within a table, not absolute times across machines. evas was built "
+         "for "
+      << build_arch()
+      << " (`EVAS_ARCH`, README). What limits the "
          "engine's speed, why steps are rejected and how its solver settings were chosen: "
          "`docs/engine-speed.md`.\n\n"
       << "## One evaluation of Eq. 1: invariants against literal node sums\n\n"
