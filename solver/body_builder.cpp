@@ -188,8 +188,9 @@ EigenPairs from_shifted(const Vec& nu, const Mat& X, double s) {
 /// singular; its Cholesky then meets a zero pivot, or one of round-off size
 /// (about n eps max B_ii; rank-revealing Cholesky: Higham, Accuracy and
 /// Stability of Numerical Algorithms, 2nd ed., section 10.3), depending on how
-/// the build rounds, and the pencil's eigenvalues are arbitrary. A pivot of a
-/// sound model is at least s times M's smallest eigenvalue.
+/// the build rounds, and the pencil's eigenvalues are arbitrary. A sound
+/// model's pivots are at least B's smallest eigenvalue, which K + s M keeps
+/// far above that unless a part is both without mass and without stiffness.
 bool definite_pivots(const Vec& l, const Vec& b_diag) {
   const double tiny = static_cast<double>(b_diag.size()) * std::numeric_limits<double>::epsilon() *
                       b_diag.maxCoeff();
