@@ -13,7 +13,7 @@
 //      and s M covers the rigid motions). Null mass directions give nu = 0
 //      (infinite lambda) and are discarded (nu <= kNullNu / s); rigid modes give
 //      nu = 1/s, the largest.
-//        dense   : Eigen::GeneralizedSelfAdjointEigenSolver(M, B) (Cholesky of B);
+//        dense   : Cholesky B = L L^T, Eigen::SelfAdjointEigenSolver of L^-1 M L^-T;
 //        spectra : Spectra::SymGEigsSolver in Cholesky mode (sparse LLT of B),
 //                  largest nu. Its Krylov operator L^-1 M L^-T has the spectrum of
 //                  the shift-invert operator (K + s M)^-1 M, so convergence is
@@ -200,16 +200,23 @@ bool definite_pivots(const Vec& l, const Vec& b_diag) {
 EigenPairs solve_dense(const std::string& name, const SpMat& K, const SpMat& M, double s) {
   const Mat Md = Mat(M);
   const Mat Bd = Mat(K) + s * Md;
+  const std::string failed =
+      "dense generalized eigen-solver failed: K + s M is not positive definite (K is "
+      "indefinite, or a part of the model without mass is loose)";
   const Eigen::LLT<Mat> llt(Bd);
-  const bool definite =
-      llt.info() == Eigen::Success && definite_pivots(llt.matrixLLT().diagonal(), Bd.diagonal());
-  Eigen::GeneralizedSelfAdjointEigenSolver<Mat> es;
-  if (definite) es.compute(Md, Bd, Eigen::ComputeEigenvectors | Eigen::Ax_lBx);
-  if (!definite || es.info() != Eigen::Success)
-    fail(name,
-         "dense generalized eigen-solver failed: K + s M is not positive definite (K is "
-         "indefinite, or a part of the model without mass is loose)");
-  return from_shifted(es.eigenvalues(), es.eigenvectors(), s);
+  if (llt.info() != Eigen::Success || !definite_pivots(llt.matrixLLT().diagonal(), Bd.diagonal()))
+    fail(name, failed);
+  // M x = nu B x with B = L L^T as the standard problem C y = nu y, C = L^-1 M
+  // L^-T, x = L^-T y (B-normalised); the steps of Eigen's
+  // GeneralizedSelfAdjointEigenSolver, on the factor checked above
+  Mat C = Md.selfadjointView<Eigen::Lower>();
+  llt.matrixL().solveInPlace<Eigen::OnTheLeft>(C);
+  llt.matrixU().solveInPlace<Eigen::OnTheRight>(C);
+  const Eigen::SelfAdjointEigenSolver<Mat> es(C);
+  if (es.info() != Eigen::Success) fail(name, failed);
+  Mat X = es.eigenvectors();
+  llt.matrixU().solveInPlace(X);
+  return from_shifted(es.eigenvalues(), X, s);
 }
 
 #ifdef EVAS_HAVE_SPECTRA
