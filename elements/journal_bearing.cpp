@@ -352,20 +352,32 @@ double JournalBearing::peak_pressure(const V2& e, const V2& ed, double om) const
     const double h = c - e.dot(u);
     return W.dot(u) / (h * h * h);
   };
-  // Coarse scan (the unit vector turned by dphi each point: one sine and
-  // cosine for the scan), then Newton in the best bracket.
-  const int n = 64;
-  const double dphi = M_PI / n;
-  const double cr = std::cos(dphi), sr = std::sin(dphi);
-  V2 u(std::cos(phiW - 0.5 * M_PI), std::sin(phiW - 0.5 * M_PI));
+  // Coarse scan of the positive half circle phiW - pi/2 + i dphi, i = 0..n, with
+  // the angles' cosines and sines from a table: e and W turned once into the
+  // frame of phiW - pi/2, the points are independent (they vectorize; a unit
+  // vector turned point by point chained them), then Newton in the best bracket.
+  constexpr int n = 64;
+  constexpr double dphi = M_PI / n;
+  struct Table {
+    double c[n + 1], s[n + 1];
+  };
+  static const Table tab = [] {
+    Table t{};
+    for (int i = 0; i <= n; ++i) t.c[i] = std::cos(i * dphi), t.s[i] = std::sin(i * dphi);
+    return t;
+  }();
+  const double b0 = phiW - 0.5 * M_PI, cb = std::cos(b0), sb = std::sin(b0);
+  const double e1 = cb * e.x() + sb * e.y(), e2 = cb * e.y() - sb * e.x();
+  const double w1 = cb * W.x() + sb * W.y(), w2 = cb * W.y() - sb * W.x();
+  double qs[n + 1];
+  for (int i = 0; i <= n; ++i) {
+    const double h = c - (e1 * tab.c[i] + e2 * tab.s[i]);
+    qs[i] = (w1 * tab.c[i] + w2 * tab.s[i]) / (h * h * h);
+  }
   int best = 0;
   double qbest = -1.0;
-  for (int i = 0; i <= n; ++i) {
-    const double h = c - e.dot(u);
-    const double v = W.dot(u) / (h * h * h);
-    if (v > qbest) qbest = v, best = i;
-    u = V2(cr * u.x() - sr * u.y(), sr * u.x() + cr * u.y());
-  }
+  for (int i = 0; i <= n; ++i)
+    if (qs[i] > qbest) qbest = qs[i], best = i;
   // Safeguarded Newton on dq/dphi = 0 in the bracket around the best point,
   // with u' = perp(u), u'' = -u:  N = W.u, h = c - e.u,
   //   q' = N' / h^3 - 3 N h' / h^4,

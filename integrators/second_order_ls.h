@@ -12,7 +12,8 @@
 // section 7.2). It is half the size of A, so a factorization costs about an
 // eighth and a solve a quarter of A's (dense counts).
 //
-// The reduced matrix is factorized dense (partial-pivoting LU) up to n = 200
+// The reduced matrix is factorized dense (partial-pivoting LU; inverted once
+// it has served a number of solves, which are then matrix-vector products) up to n = 200
 // (the engine: n = 72, body blocks dense and coupled), by KLU above. K and C are kept between
 // factorizations: a caller may form the matrix again at a new (a..e) without evaluating the
 // Jacobian (Jacobian reuse, counted by the caller).
@@ -64,8 +65,11 @@ class SecondOrderSolver {
   SpMat K_, C_;
   double a_ = 0, b_ = 0, c_ = 0, d_ = 0, e_ = 0;  // coefficients of the next factor()
   double fa_ = 0, fb_ = 0, fd_ = 0, fe_ = 0;      // ... of the factorization held
-  // dense path: S_ factorized in place (LU with partial pivoting)
-  Mat S_, Cd_;
+  // dense path: S_ factorized in place (LU with partial pivoting); Sinv_ its
+  // inverse once inverted_ (after a number of solves_ on the factorization)
+  Mat S_, Cd_, Sinv_;
+  int solves_ = 0;
+  bool inverted_ = false;
   std::unique_ptr<Eigen::PartialPivLU<Eigen::Ref<Mat>>> lu_;
   // sparse path: KLU, refactorizing with the pivots of the last full factorization
   // while its reciprocal condition estimate stays above kKluRcond

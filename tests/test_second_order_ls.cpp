@@ -26,13 +26,12 @@ SpMat band_pattern(int n, int band) {
   return P;
 }
 
-// max |x - x_ref| / max |x_ref| for A(a..e) x = r solved both ways.
-double reduced_vs_full(SecondOrderSolver& so, double a, double b, double c, double d, double e,
-                       unsigned seed) {
+// Random K (stiff, non-symmetric: 1e4 .. 1e8 on the diagonal) and damping C
+// into `so`; returns the full 2n x 2n matrix A(a..e) on them.
+Mat fill_random(SecondOrderSolver& so, double a, double b, double c, double d, double e,
+                std::mt19937& rng) {
   const int n = so.size();
-  std::mt19937 rng(seed);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
-  // a stiff, non-symmetric K (1e4 .. 1e8 on the diagonal) and a damping C
   for (int k = 0; k < so.K().nonZeros(); ++k) {
     so.K().valuePtr()[k] = 1e3 * u(rng);
     so.C().valuePtr()[k] = 10.0 * u(rng);
@@ -46,6 +45,16 @@ double reduced_vs_full(SecondOrderSolver& so, double a, double b, double c, doub
   A.topRightCorner(n, n) = b * Mat::Identity(n, n);
   A.bottomLeftCorner(n, n) = c * Mat(so.K());
   A.bottomRightCorner(n, n) = d * Mat::Identity(n, n) + e * Mat(so.C());
+  return A;
+}
+
+// max |x - x_ref| / max |x_ref| for A(a..e) x = r solved both ways.
+double reduced_vs_full(SecondOrderSolver& so, double a, double b, double c, double d, double e,
+                       unsigned seed) {
+  const int n = so.size();
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  const Mat A = fill_random(so, a, b, c, d, e, rng);
   Vec r(2 * n);
   for (int i = 0; i < 2 * n; ++i) r[i] = u(rng);
   const Vec ref = A.fullPivLu().solve(r);
@@ -72,6 +81,35 @@ TEST(SecondOrderSolver, DensePathMatchesFullSolve) {
   SecondOrderSolver so(band_pattern(24, 30));  // full 24 x 24
   EXPECT_TRUE(so.dense());
   expect_matches_full(so, 2e5, 1e-5, 1, "dense");
+}
+
+// A dense factorization that serves many solves is inverted after a number of
+// them (second_order_ls.cpp, kInvertAfter = 40): every one of 120 solves on one
+// factorization, before and after, meets the full solve, and so does the first
+// solve after a refactorization (the inverse of the old matrix is not used).
+TEST(SecondOrderSolver, DensePathManySolvesOnOneFactorization) {
+  SecondOrderSolver so(band_pattern(30, 40));
+  ASSERT_TRUE(so.dense());
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (double cj : {2e5, 7e4}) {
+    const Mat A = fill_random(so, cj, -1.0, 1.0, cj, 1.0, rng);
+    const auto lu = A.fullPivLu();
+    so.set_coefficients(cj, -1.0, 1.0, cj, 1.0);
+    ASSERT_TRUE(so.factor());
+    double worst = 0.0;
+    for (int k = 0; k < 120; ++k) {
+      Vec r(60);
+      for (int i = 0; i < 60; ++i) r[i] = u(rng);
+      const Vec ref = lu.solve(r);
+      Vec x = r;
+      so.solve(x.data(), x.data());
+      const double err = (x - ref).cwiseAbs().maxCoeff() / ref.cwiseAbs().maxCoeff();
+      worst = std::max(worst, err);
+      EXPECT_LT(err, 1e-10) << "cj " << cj << ", solve " << k;
+    }
+    std::cout << "cj " << cj << ": worst of 120 solves " << worst << "\n";
+  }
 }
 
 TEST(SecondOrderSolver, KluPathMatchesFullSolve) {
