@@ -353,9 +353,10 @@ double JournalBearing::peak_pressure(const V2& e, const V2& ed, double om) const
     return W.dot(u) / (h * h * h);
   };
   // Coarse scan of the positive half circle phiW - pi/2 + i dphi, i = 0..n, with
-  // the angles' cosines and sines from a table: e and W turned once into the
-  // frame of phiW - pi/2, the points are independent (they vectorize; a unit
-  // vector turned point by point chained them), then Newton in the best bracket.
+  // the angles' cosines and sines from a table: in the frame turned to phiW -
+  // pi/2, W = (0, |W|) and e is turned once; the points are independent (they
+  // vectorize; a unit vector turned point by point chained them), then Newton
+  // in the best bracket.
   constexpr int n = 64;
   constexpr double dphi = M_PI / n;
   struct Table {
@@ -366,13 +367,13 @@ double JournalBearing::peak_pressure(const V2& e, const V2& ed, double om) const
     for (int i = 0; i <= n; ++i) t.c[i] = std::cos(i * dphi), t.s[i] = std::sin(i * dphi);
     return t;
   }();
-  const double b0 = phiW - 0.5 * M_PI, cb = std::cos(b0), sb = std::sin(b0);
+  const double wn = W.norm();
+  const double cb = W.y() / wn, sb = -W.x() / wn;  // cos, sin of phiW - pi/2
   const double e1 = cb * e.x() + sb * e.y(), e2 = cb * e.y() - sb * e.x();
-  const double w1 = cb * W.x() + sb * W.y(), w2 = cb * W.y() - sb * W.x();
   double qs[n + 1];
   for (int i = 0; i <= n; ++i) {
     const double h = c - (e1 * tab.c[i] + e2 * tab.s[i]);
-    qs[i] = (w1 * tab.c[i] + w2 * tab.s[i]) / (h * h * h);
+    qs[i] = wn * tab.s[i] / (h * h * h);
   }
   int best = 0;
   double qbest = -1.0;
