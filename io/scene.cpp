@@ -1,5 +1,6 @@
 #include "io/scene.h"
 
+#include <yaml-cpp/eventhandler.h>
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
@@ -868,6 +869,45 @@ OutputSpec SceneReader::read_output(const Node& n, const Model& model, double t_
   return out;
 }
 
+// Where each YAML document of `text` starts, read by yaml-cpp's parser without
+// building nodes. yaml-cpp 0.7's LoadAll never returns on a ',' outside [ ] and
+// { } (a flow entry at block level, e.g. a line starting with ','): every
+// document it begins there is empty and consumes nothing, so it starts the
+// next at the same place until memory runs out (found by fuzz_scene). A
+// document that starts where the one before it did is such a place: a syntax
+// error at its mark.
+std::vector<YAML::Mark> document_starts(const std::string& text) {
+  struct Starts : YAML::EventHandler {
+    std::vector<YAML::Mark> marks;
+    void OnDocumentStart(const YAML::Mark& m) override { marks.push_back(m); }
+    void OnDocumentEnd() override {}
+    void OnNull(const YAML::Mark&, YAML::anchor_t) override {}
+    void OnAlias(const YAML::Mark&, YAML::anchor_t) override {}
+    void OnScalar(const YAML::Mark&, const std::string&, YAML::anchor_t,
+                  const std::string&) override {}
+    void OnSequenceStart(const YAML::Mark&, const std::string&, YAML::anchor_t,
+                         YAML::EmitterStyle::value) override {}
+    void OnSequenceEnd() override {}
+    void OnMapStart(const YAML::Mark&, const std::string&, YAML::anchor_t,
+                    YAML::EmitterStyle::value) override {}
+    void OnMapEnd() override {}
+  } h;
+  std::istringstream is(text);
+  YAML::Parser parser(is);
+  while (parser.HandleNextDocument(h)) {
+    const std::size_t n = h.marks.size();
+    if (n >= 2 && h.marks[n - 1].pos == h.marks[n - 2].pos) {
+      const YAML::Mark& m = h.marks[n - 1];
+      const char c =
+          m.pos >= 0 && static_cast<std::size_t>(m.pos) < text.size() ? text[m.pos] : '?';
+      throw YAML::ParserException(m, std::string("unexpected '") + c + "'" +
+                                         (c == ',' ? " outside [ ] or { }" : "") +
+                                         ": the parser cannot go on from here");
+    }
+  }
+  return h.marks;
+}
+
 }  // namespace
 
 Scene parse_scene(const std::string& text, const std::string& path) {
@@ -877,10 +917,10 @@ Scene parse_scene(const std::string& text, const std::string& path) {
                      " bytes (16 MiB)");
   Node root;
   try {
-    std::vector<Node> docs = YAML::LoadAll(text);
+    const std::vector<YAML::Mark> docs = document_starts(text);
     if (docs.size() > 1) {
       // The line of the second document's start marker ('---').
-      int line = docs[1].Mark().line >= 0 ? docs[1].Mark().line + 1 : 0;
+      int line = docs[1].line >= 0 ? docs[1].line + 1 : 0;
       std::istringstream is(text);
       int no = 0, starts = 0;
       bool content = false;
@@ -899,7 +939,7 @@ Scene parse_scene(const std::string& text, const std::string& path) {
       throw InputError(path + ":" + std::to_string(line) + ": scene: a second YAML document " +
                        "('---') is not allowed; a scene file holds one document");
     }
-    if (!docs.empty()) root = docs.front();
+    if (!docs.empty()) root = YAML::Load(text);  // the one document
   } catch (const YAML::ParserException& e) {
     throw InputError(path + ":" + std::to_string(e.mark.line + 1) +
                      ": YAML syntax error: " + e.msg);
