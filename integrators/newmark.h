@@ -103,6 +103,8 @@ class NewmarkIntegrator : public FixedStepIntegrator {
  private:
   enum class Iteration { FixedPoint, Anderson, EffectiveMass, Newton };
   void kinematics(double h, const Vec& a);
+  /// step() from a_ as it is: the iteration to the new state.
+  bool iterate(double t, double h);
   // S = (1 - am) I + (1 - af)(beta h^2 K + gamma h C), factorized by so_ (dense
   // LU up to n = 200, KLU above; integrators/second_order_ls.h)
   void factorize(const SpMat& K, const SpMat& C, double h);
@@ -121,6 +123,7 @@ class NewmarkIntegrator : public FixedStepIntegrator {
   double h_factor_ = 0.0;
   Vec f_prev_;  // f one step before the current state (valid with has_history())
   Vec R_, delta_;
+  Vec a_save_;                  // a_ before step() shifted it (given back if the step fails)
   std::vector<double> rnorms_;  // ||R|| per iteration of the current step
   // Anderson: differences of the fixed-point map values and residuals
   Mat dG_, dF_;

@@ -58,6 +58,7 @@ SecondOrderSolver::SecondOrderSolver(const SpMat& pattern)
     S_ = Mat::Identity(n_, n_);
     Cd_ = Mat::Zero(n_, n_);
     Sinv_ = Mat::Identity(n_, n_);
+    invert_after_ = kInvertAfter;
     lu_ = std::make_unique<Eigen::PartialPivLU<Eigen::Ref<Mat>>>(S_);
     Ss_.resize(0, 0);
   } else {
@@ -113,6 +114,9 @@ bool SecondOrderSolver::factor_matrix(double kk, double cc, double ii) {
     lu_->compute(S_);  // in place: S_ now holds L and U
     // singular when a pivot vanishes against the largest (no allocation, unlike rcond())
     const auto u = S_.diagonal().cwiseAbs();
+    // a matrix like the last one, which served more solves than the inverse
+    // costs, is inverted on its first solve (see solve_matrix)
+    invert_after_ = solves_ > kInvertAfter ? 0 : kInvertAfter;
     solves_ = 0;
     inverted_ = false;
     return u.minCoeff() > 1e-15 * u.maxCoeff();
@@ -157,10 +161,12 @@ void SecondOrderSolver::solve_matrix(const double* r, double* x) {
     // ~30 solves per factorization on the engine) is never inverted, one kept
     // long (generalized-alpha, ~110) is, and either way the cost is at most
     // twice that of the better choice made in hindsight (the rent-or-buy
-    // argument). The inverse's error, of order cond(S) eps, only slows a
+    // argument). A matrix that follows one which served more than kInvertAfter
+    // solves is inverted on its first solve: an integrator that keeps its
+    // matrices long keeps doing so. The inverse's error, of order cond(S) eps, only slows a
     // modified Newton iteration that already runs on an old matrix (Higham,
     // Accuracy and Stability of Numerical Algorithms, 2nd ed. 2002, ch. 14).
-    if (!inverted_ && ++solves_ > kInvertAfter) {
+    if (++solves_ > invert_after_ && !inverted_) {
       // P as a matrix, column i holding a 1 in row indices(i) (an in-place
       // permutation product would allocate its bookkeeping)
       const auto& perm = lu_->permutationP().indices();

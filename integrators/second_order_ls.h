@@ -68,7 +68,8 @@ class SecondOrderSolver {
   // dense path: S_ factorized in place (LU with partial pivoting); Sinv_ its
   // inverse once inverted_ (after a number of solves_ on the factorization)
   Mat S_, Cd_, Sinv_;
-  int solves_ = 0;
+  long solves_ = 0;        // on the factorization held
+  long invert_after_ = 0;  // solves on it before it is inverted
   bool inverted_ = false;
   std::unique_ptr<Eigen::PartialPivLU<Eigen::Ref<Mat>>> lu_;
   // sparse path: KLU, refactorizing with the pivots of the last full factorization

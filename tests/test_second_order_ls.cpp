@@ -84,21 +84,23 @@ TEST(SecondOrderSolver, DensePathMatchesFullSolve) {
 }
 
 // A dense factorization that serves many solves is inverted after a number of
-// them (second_order_ls.cpp, kInvertAfter = 40): every one of 120 solves on one
-// factorization, before and after, meets the full solve, and so does the first
-// solve after a refactorization (the inverse of the old matrix is not used).
+// them (second_order_ls.cpp, kInvertAfter = 40), and one that follows such a
+// factorization on its first solve: every solve meets the full solve, over 120
+// solves on one factorization (inverted after 40), 120 on the next (inverted at
+// once: the inverse of the old matrix is not used), 10 on the next (inverted at
+// once) and 10 on the last (the triangular solves again).
 TEST(SecondOrderSolver, DensePathManySolvesOnOneFactorization) {
   SecondOrderSolver so(band_pattern(30, 40));
   ASSERT_TRUE(so.dense());
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
-  for (double cj : {2e5, 7e4}) {
+  for (auto [cj, solves] : {std::pair{2e5, 120}, {7e4, 120}, {3e4, 10}, {1e4, 10}}) {
     const Mat A = fill_random(so, cj, -1.0, 1.0, cj, 1.0, rng);
     const auto lu = A.fullPivLu();
     so.set_coefficients(cj, -1.0, 1.0, cj, 1.0);
     ASSERT_TRUE(so.factor());
     double worst = 0.0;
-    for (int k = 0; k < 120; ++k) {
+    for (int k = 0; k < solves; ++k) {
       Vec r(60);
       for (int i = 0; i < 60; ++i) r[i] = u(rng);
       const Vec ref = lu.solve(r);
@@ -108,7 +110,7 @@ TEST(SecondOrderSolver, DensePathManySolvesOnOneFactorization) {
       worst = std::max(worst, err);
       EXPECT_LT(err, 1e-10) << "cj " << cj << ", solve " << k;
     }
-    std::cout << "cj " << cj << ": worst of 120 solves " << worst << "\n";
+    std::cout << "cj " << cj << ": worst of " << solves << " solves " << worst << "\n";
   }
 }
 
