@@ -73,7 +73,7 @@ void NewmarkIntegrator::factorize(const SpMat& K, const SpMat& C, double h) {
 bool NewmarkIntegrator::step(double t, double h) {
   // Generalized-alpha's a_n approximates the acceleration at t_n + (alpha_m -
   // alpha_f) h, not at t_n (Arnold & Bruls, Multibody Syst. Dyn. 18 (2007)
-  // 185-202, eq. 13): the offset moves with the step. A step of h after one of
+  // 185-202): the offset moves with the step. A step of h after one of
   // h_prev starts from a_n moved along the acceleration's slope by (alpha_m -
   // alpha_f)(h - h_prev), the slope from the last two steps' a. Without it each
   // change of step leaves an O(h) error in a, and steps that keep changing lose

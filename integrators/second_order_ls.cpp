@@ -163,9 +163,11 @@ void SecondOrderSolver::solve_matrix(const double* r, double* x) {
     // twice that of the better choice made in hindsight (the rent-or-buy
     // argument). A matrix that follows one which served more than kInvertAfter
     // solves is inverted on its first solve: an integrator that keeps its
-    // matrices long keeps doing so. The inverse's error, of order cond(S) eps, only slows a
-    // modified Newton iteration that already runs on an old matrix (Higham,
-    // Accuracy and Stability of Numerical Algorithms, 2nd ed. 2002, ch. 14).
+    // matrices long keeps doing so (that gives up the bound of two for a
+    // matrix that, unlike the one before it, serves few solves). The inverse's
+    // error, of order cond(S) eps, only slows a modified Newton iteration
+    // that already runs on an old matrix (Higham, Accuracy and Stability of
+    // Numerical Algorithms, 2nd ed. 2002, ch. 14).
     if (++solves_ > invert_after_ && !inverted_) {
       // P as a matrix, column i holding a 1 in row indices(i) (an in-place
       // permutation product would allocate its bookkeeping)
