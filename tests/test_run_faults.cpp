@@ -643,8 +643,16 @@ TEST(RunFaults, OutputOutsideAnElementsRangeReportsTheState) {
   const auto kept = read_results((out / "results.h5").string()).time;  // the run has ended
   ASSERT_FALSE(kept.empty());
   std::printf("[ measured ] rows kept: %zu, the last at t = %.6g s\n", kept.size(), kept.back());
-  EXPECT_GT(kept.size(), 1000u);  // measured 1316, up to t = 0.0730556 s
-  EXPECT_LT(kept.back(), 0.0732);
+  EXPECT_GT(kept.size(), 1000u);  // measured 1325, up to t = 0.0735556 s
+  // every row before the failing output is kept, none from it on: the last
+  // kept row is the output (every 1 deg = 1/18000 s) just before it
+  const std::string key = "the output channels at t = ";
+  const std::size_t at = o.log.find(key);
+  ASSERT_NE(at, std::string::npos) << o.log;
+  const double t_fail = std::stod(o.log.substr(at + key.size(), 20));
+  std::printf("[ measured ] failing output at t = %.10g s\n", t_fail);
+  EXPECT_LT(kept.back(), t_fail);
+  EXPECT_GT(kept.back(), t_fail - 1.5 / 18000.0);
 }
 
 // A fixed step too coarse for the bodies' highest mode is warned of before the
