@@ -118,7 +118,6 @@ bool SecondOrderSolver::factor_matrix(double kk, double cc, double ii) {
     // costs, is inverted on its first solve (see solve_matrix)
     invert_after_ = solves_ > kInvertAfter ? 0 : kInvertAfter;
     solves_ = 0;
-    inverted_ = false;
     return u.minCoeff() > 1e-15 * u.maxCoeff();
   }
   // Ss_ has K's pattern plus the diagonal, in the same column order: walk both.
@@ -168,22 +167,21 @@ void SecondOrderSolver::solve_matrix(const double* r, double* x) {
     // error, of order cond(S) eps, only slows a modified Newton iteration
     // that already runs on an old matrix (Higham, Accuracy and Stability of
     // Numerical Algorithms, 2nd ed. 2002, ch. 14).
-    if (++solves_ > invert_after_ && !inverted_) {
-      // P as a matrix, column i holding a 1 in row indices(i) (an in-place
-      // permutation product would allocate its bookkeeping)
-      const auto& perm = lu_->permutationP().indices();
-      Sinv_.setZero();
-      for (int i = 0; i < n_; ++i) Sinv_(perm[i], i) = 1.0;
-      S_.triangularView<Eigen::UnitLower>().solveInPlace(Sinv_);
-      S_.triangularView<Eigen::Upper>().solveInPlace(Sinv_);
-      inverted_ = true;
-    }
-    if (inverted_) {
-      xq_.noalias() = Sinv_ * rv;
-    } else {
+    if (++solves_ <= invert_after_) {
       xq_.noalias() = lu_->permutationP() * rv;
       S_.triangularView<Eigen::UnitLower>().solveInPlace(xq_);
       S_.triangularView<Eigen::Upper>().solveInPlace(xq_);
+    } else {
+      if (solves_ == invert_after_ + 1) {
+        // P as a matrix, column i holding a 1 in row indices(i) (an in-place
+        // permutation product would allocate its bookkeeping)
+        const auto& perm = lu_->permutationP().indices();
+        Sinv_.setZero();
+        for (int i = 0; i < n_; ++i) Sinv_(perm[i], i) = 1.0;
+        S_.triangularView<Eigen::UnitLower>().solveInPlace(Sinv_);
+        S_.triangularView<Eigen::Upper>().solveInPlace(Sinv_);
+      }
+      xq_.noalias() = Sinv_ * rv;
     }
   } else {
     xq_ = rv;

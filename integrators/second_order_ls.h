@@ -66,11 +66,10 @@ class SecondOrderSolver {
   double a_ = 0, b_ = 0, c_ = 0, d_ = 0, e_ = 0;  // coefficients of the next factor()
   double fa_ = 0, fb_ = 0, fd_ = 0, fe_ = 0;      // ... of the factorization held
   // dense path: S_ factorized in place (LU with partial pivoting); Sinv_ its
-  // inverse once inverted_ (after a number of solves_ on the factorization)
+  // inverse, formed on solve invert_after_ + 1 of the factorization
   Mat S_, Cd_, Sinv_;
   long solves_ = 0;        // on the factorization held
   long invert_after_ = 0;  // solves on it before it is inverted
-  bool inverted_ = false;
   std::unique_ptr<Eigen::PartialPivLU<Eigen::Ref<Mat>>> lu_;
   // sparse path: KLU, refactorizing with the pivots of the last full factorization
   // while its reciprocal condition estimate stays above kKluRcond
