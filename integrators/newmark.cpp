@@ -79,21 +79,8 @@ bool NewmarkIntegrator::step(double t, double h) {
   // change of step leaves an O(h) error in a, and steps that keep changing lose
   // the second order (tests/test_step_control.cpp,
   // ChangingStepsKeepSecondOrder). A step that fails gives a_n back.
-  const double shift = par_.alpha_m - par_.alpha_f;
-  // (fixed steps differ from each other by the round-off of t + h - t: no shift)
-  if (shift == 0.0 || !has_history() || !(h_prev_ > 0.0) || std::abs(h / h_prev_ - 1.0) < 1e-9)
-    return iterate(t, h);
-  a_save_ = a_;
-  a_ += (shift * (h - h_prev_) / h_prev_) * (a_ - a_prev_);
-  bool ok = false;
-  try {
-    ok = iterate(t, h);
-  } catch (...) {
-    a_.swap(a_save_);
-    throw;
-  }
-  if (!ok) a_.swap(a_save_);
-  return ok;
+  return shifted_step(h, par_.alpha_m - par_.alpha_f, a_, a_prev_, a_save_,
+                      [&] { return iterate(t, h); });
 }
 
 bool NewmarkIntegrator::iterate(double t, double h) {

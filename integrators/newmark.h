@@ -94,6 +94,27 @@ class NewmarkIntegrator : public FixedStepIntegrator {
   bool step(double t, double h) override;
   void local_error(double h, bool hist, Vec& eq, Vec& ev) const override;
   void accepted() override;
+  /// One step of h by iterate() from the filtered acceleration acc moved for a
+  /// change of step (newmark.cpp, step()); acc is given back when it fails.
+  /// shift: alpha_m - alpha_f; acc_prev: acc of the step before; save: scratch.
+  template <class Iterate>
+  bool shifted_step(double h, double shift, Vec& acc, const Vec& acc_prev, Vec& save,
+                    Iterate&& iterate) {
+    // (fixed steps differ from each other by the round-off of t + h - t: no shift)
+    if (shift == 0.0 || !has_history() || !(h_prev_ > 0.0) || std::abs(h / h_prev_ - 1.0) < 1e-9)
+      return iterate();
+    save = acc;
+    acc += (shift * (h - h_prev_) / h_prev_) * (acc - acc_prev);
+    bool ok = false;
+    try {
+      ok = iterate();
+    } catch (...) {
+      acc.swap(save);
+      throw;
+    }
+    if (!ok) acc.swap(save);
+    return ok;
+  }
   /// The estimates above from the accelerations a_n (a0), a_{n+1} (a1) and the
   /// one before (a_prev, step hp; used when hist).
   static void estimate_local_error(const Parameters& par, double h, bool hist, double hp,

@@ -37,6 +37,7 @@ void NewmarkDaeIntegrator::setup() {
   if (m_ > 0) G_ = p_->constraint_pattern();
   aa_.resize(n_);
   aa1_.resize(n_);
+  aa_prev_.resize(n_);
   lam_ = Vec::Zero(m_);
   lam1_ = lam_;
   lam_prev_ = lam_;
@@ -53,6 +54,7 @@ void NewmarkDaeIntegrator::start_acceleration() {
   const dae::ConsistentState cs = dae::consistent_state(*p_, t_, q_, v_);
   a_ = cs.a;
   aa_ = cs.a;
+  aa_prev_ = cs.a;
   lam_ = m_ > 0 ? cs.lambda : Vec::Zero(0);
   lam_prev_ = lam_;
 }
@@ -60,6 +62,7 @@ void NewmarkDaeIntegrator::start_acceleration() {
 void NewmarkDaeIntegrator::accepted() {
   NewmarkIntegrator::accepted();
   if (!dae_) return;
+  aa_prev_.swap(aa_);  // (the filtered acceleration the step started from, shifted or not)
   aa_.swap(aa1_);
   lam_prev_ = lam_;
   lam_ = lam1_;
@@ -67,6 +70,15 @@ void NewmarkDaeIntegrator::accepted() {
 
 bool NewmarkDaeIntegrator::step(double t, double h) {
   if (!dae_) return NewmarkIntegrator::step(t, h);
+  // The step-change shift of newmark.cpp on the filtered acceleration: aa_n
+  // approximates qdd at t_n + (alpha_m - alpha_f) h (Arnold & Bruls 2007), so
+  // a step of h after one of h_prev starts from aa_n moved along the slope of
+  // the last two steps' aa. A step that fails gives aa_n back.
+  return shifted_step(h, par_.alpha_m - par_.alpha_f, aa_, aa_prev_, aa_save_,
+                      [&] { return iterate_dae(t, h); });
+}
+
+bool NewmarkDaeIntegrator::iterate_dae(double t, double h) {
   const double am = par_.alpha_m, af = par_.alpha_f, be = par_.beta, ga = par_.gamma;
   const double t1 = t + h, bh2 = be * h * h;
   const double bp = (1.0 - am) / ((1.0 - af) * bh2), gp = ga / (be * h);

@@ -51,6 +51,8 @@ class NewmarkDaeIntegrator : public NewmarkIntegrator {
 
  private:
   // r = [M qdd + f + G^T lambda; g / (beta h^2)] at the trial state
+  // one step of h from (t_, q_, v_, aa_): Newton on (q, lambda)
+  bool iterate_dae(double t, double h);
   void residual(double t1, double bh2);
   bool factorize(double t1, double bp, double gp, double bh2);
 
@@ -60,6 +62,7 @@ class NewmarkDaeIntegrator : public NewmarkIntegrator {
   SpMat K_, C_, M_, G_, A_;
   Eigen::KLU<SpMat> lu_;
   Vec aa_, aa1_;               // filtered acceleration at t_ and of the trial step
+  Vec aa_prev_, aa_save_;      // aa of the step before; aa_ before step() shifted it
   Vec lam_, lam1_, lam_prev_;  // multipliers at t_, of the trial step, at the step before
   Vec r_, g_, Mqdd_;
   bool factored_ = false;
