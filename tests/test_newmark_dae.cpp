@@ -98,7 +98,7 @@ TEST(GeneralizedAlphaDae, ChangingStepsKeepSecondOrder) {
   // (newmark_dae.cpp). Without that the measured orders of q and v here are
   // 0.82-1.23 (rho 0.6) and 0.99-1.00 (rho 0.3); with it 1.91-2.02. (At rho 0.8
   // and 0.9 the shift is small, alpha_m - alpha_f = -0.11 and -0.05, and both
-  // variants measure 1.85-2.0, with errors 7-25 times those of fixed steps at
+  // variants measure 1.85-2.0, with errors 7-37 times those of fixed steps at
   // T/400: the step changes excite the lightly damped spurious oscillation of
   // the index-3 form.)
   for (double rho : {0.6, 0.3}) {
