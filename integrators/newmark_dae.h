@@ -50,9 +50,9 @@ class NewmarkDaeIntegrator : public NewmarkIntegrator {
   void local_error(double h, bool hist, Vec& eq, Vec& ev) const override;
 
  private:
-  // r = [M qdd + f + G^T lambda; g / (beta h^2)] at the trial state
   // one step of h from (t_, q_, v_, aa_): Newton on (q, lambda)
   bool iterate_dae(double t, double h);
+  // r = [M qdd + f + G^T lambda; g / (beta h^2)] at the trial state
   void residual(double t1, double bh2);
   bool factorize(double t1, double bp, double gp, double bh2);
 
