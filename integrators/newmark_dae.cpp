@@ -54,7 +54,6 @@ void NewmarkDaeIntegrator::start_acceleration() {
   const dae::ConsistentState cs = dae::consistent_state(*p_, t_, q_, v_);
   a_ = cs.a;
   aa_ = cs.a;
-  aa_prev_ = cs.a;
   lam_ = m_ > 0 ? cs.lambda : Vec::Zero(0);
   lam_prev_ = lam_;
 }
@@ -70,10 +69,7 @@ void NewmarkDaeIntegrator::accepted() {
 
 bool NewmarkDaeIntegrator::step(double t, double h) {
   if (!dae_) return NewmarkIntegrator::step(t, h);
-  // The step-change shift of newmark.cpp on the filtered acceleration: aa_n
-  // approximates qdd at t_n + (alpha_m - alpha_f) h (Arnold & Bruls 2007), so
-  // a step of h after one of h_prev starts from aa_n moved along the slope of
-  // the last two steps' aa. A step that fails gives aa_n back.
+  // the step-change shift of NewmarkIntegrator::step, on the filtered acceleration
   return shifted_step(h, par_.alpha_m - par_.alpha_f, aa_, aa_prev_, aa_save_,
                       [&] { return iterate_dae(t, h); });
 }

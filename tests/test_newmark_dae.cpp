@@ -30,19 +30,28 @@ struct Errors {
   long steps = 0;
 };
 
-// One period of the pendulum (m = 2, L = 1, theta0 = 1) with step h = T / steps;
-// the largest errors and |g| over ten points of the period.
-Errors pendulum_run(int steps, double rho, const std::string& name = "generalized-alpha") {
-  problems::Pendulum p(2.0, 1.0, 9.81, 1.0);
-  const double T = p.period();
+// The pendulum of these tests: m = 2, L = 1, theta0 = 1.
+problems::Pendulum pendulum() { return problems::Pendulum(2.0, 1.0, 9.81, 1.0); }
+
+// Fixed steps of h in the index-3 form, the iteration far below the truncation error.
+IntegratorSettings index3_settings(const std::string& name, double h, double rho) {
   IntegratorSettings s;
   s.name = name;
   s.formulation = "index-3";
-  s.step = T / steps;
+  s.step = h;
   s.rho_inf = rho;
   s.rtol = 1e-12;
   s.atol = 1e-12;
   s.step_control = "fixed";
+  return s;
+}
+
+// One period of the pendulum (m = 2, L = 1, theta0 = 1) with step h = T / steps;
+// the largest errors and |g| over ten points of the period.
+Errors pendulum_run(int steps, double rho, const std::string& name = "generalized-alpha") {
+  problems::Pendulum p = pendulum();
+  const double T = p.period();
+  const IntegratorSettings s = index3_settings(name, T / steps, rho);
   auto integ = make_integrator(s.name);
   Vec q, v;
   p.initial_state(q, v);
@@ -102,19 +111,12 @@ TEST(GeneralizedAlphaDae, ChangingStepsKeepSecondOrder) {
   // T/400: the step changes excite the lightly damped spurious oscillation of
   // the index-3 form.)
   for (double rho : {0.6, 0.3}) {
-    problems::Pendulum p(2.0, 1.0, 9.81, 1.0);
+    problems::Pendulum p = pendulum();
     const double T = p.period();
     double eq[3], ev[3];
     for (int k = 0; k < 3; ++k) {
       const double h = T / (400 << k);
-      IntegratorSettings s;
-      s.name = "generalized-alpha";
-      s.formulation = "index-3";
-      s.step = h;
-      s.rho_inf = rho;
-      s.rtol = 1e-12;
-      s.atol = 1e-12;
-      s.step_control = "fixed";
+      const IntegratorSettings s = index3_settings("generalized-alpha", h, rho);
       auto integ = make_integrator(s.name);
       Vec q, v, qe, ve;
       double le = 0.0;
