@@ -42,43 +42,52 @@ M2 J2() {
 // without a branch jump at delta = pi: psi = delta - 2 atan(x),
 // x = (1 - k) sin(delta) / ((1 + k) + (1 - k) cos(delta)).
 struct Somm {
-  double psi, C, S;  // psi(delta) (up to a constant shared by both limits), cos psi, sin psi
-  double x;          // x above
+  double C, S;  // cos psi, sin psi
+  double x;     // x above
 };
-// From cos(delta) = cd and sin(delta) = sd; psi left 0 (the caller sets the
-// difference of the two limits: the antiderivatives below are linear in psi).
-Somm sommerfeld(double cd, double sd, double eps) {
-  const double k = std::sqrt((1.0 - eps) / (1.0 + eps));
-  Somm r;
-  r.psi = 0.0;
-  r.x = (1.0 - k) * sd / ((1.0 + k) + (1.0 - k) * cd);
-  const double den = 1.0 + eps * cd;
-  r.C = (cd + eps) / den;
-  r.S = std::sqrt(1.0 - eps * eps) * sd / den;
-  return r;
+// From cos(delta) = cd and sin(delta) = sd, with k and r = sqrt(1 - eps^2) given
+// (shared by both limits). psi itself is not kept: the antiderivatives below are
+// linear in psi, and the caller takes the difference of the two limits.
+Somm sommerfeld(double cd, double sd, double eps, double k, double r) {
+  Somm z;
+  z.x = (1.0 - k) * sd / ((1.0 + k) + (1.0 - k) * cd);
+  const double inv = 1.0 / (1.0 + eps * cd);
+  z.C = (cd + eps) * inv;
+  z.S = r * sd * inv;
+  return z;
 }
 
-// Antiderivatives in psi of (cos psi - eps)^a sin^b psi for a + b = 2 and 3.
-// int cos^a(delta) sin^b(delta) / (1 + eps cos delta)^n d delta with a + b = n - 1
-//   = (1 - eps^2)^((b + 1)/2 - n) int (cos psi - eps)^a sin^b psi d psi.
-double anti(int a, int b, const Somm& z, double e) {
-  const double p = z.psi, C = z.C, S = z.S;
-  if (a + b == 2) {
-    if (a == 2) return 0.5 * p + 0.5 * S * C - 2.0 * e * S + e * e * p;
-    if (a == 1) return -0.5 * C * C + e * C;
-    return 0.5 * p - 0.5 * S * C;
+// Integrals over delta from lo to hi of cos^a(delta) sin^b(delta) / (1 + eps cos
+// delta)^n, a + b = n - 1, by the substitution above:
+//   = (1 - eps^2)^((b + 1)/2 - n) [A_ab(psi)]_lo^hi, A_ab = antiderivative in psi
+// of (cos psi - eps)^a sin^b psi. dpsi = psi(hi) - psi(lo); `p` holds the
+// powers (1 - eps^2)^(-k/2), k = 0..7.
+struct FilmIntegrals {
+  double i20, i11, i02;       // n = 3 (a + b = 2)
+  double i30, i21, i12, i03;  // n = 4 (a + b = 3)
+};
+FilmIntegrals film_integrals(const Somm& lo, const Somm& hi, double dpsi, double e, const double* p,
+                             bool cubic) {
+  FilmIntegrals I{};
+  const double Ch = hi.C, Sh = hi.S, Cl = lo.C, Sl = lo.S;
+  const double dSC = Sh * Ch - Sl * Cl, dS = Sh - Sl, dC = Ch - Cl;
+  // a + b = 2: A_20 = psi/2 + S C/2 - 2 e S + e^2 psi, A_11 = -C^2/2 + e C,
+  // A_02 = psi/2 - S C/2
+  I.i20 = p[5] * (0.5 * dpsi + 0.5 * dSC - 2.0 * e * dS + e * e * dpsi);
+  I.i11 = p[4] * (-0.5 * (Ch * Ch - Cl * Cl) + e * dC);
+  I.i02 = p[3] * (0.5 * dpsi - 0.5 * dSC);
+  if (cubic) {
+    // a + b = 3: A_30 = S - S^3/3 - 3 e (psi/2 + S C/2) + 3 e^2 S - e^3 psi,
+    // A_21 = -(C - e)^3/3, A_12 = S^3/3 - e (psi/2 - S C/2), A_03 = -C + C^3/3
+    const double dS3 = Sh * Sh * Sh - Sl * Sl * Sl, dC3 = Ch * Ch * Ch - Cl * Cl * Cl;
+    const double ch = Ch - e, cl = Cl - e;
+    I.i30 = p[7] * (dS - dS3 / 3.0 - 3.0 * e * (0.5 * dpsi + 0.5 * dSC) + 3.0 * e * e * dS -
+                    e * e * e * dpsi);
+    I.i21 = p[6] * (-(ch * ch * ch - cl * cl * cl) / 3.0);
+    I.i12 = p[5] * (dS3 / 3.0 - e * (0.5 * dpsi - 0.5 * dSC));
+    I.i03 = p[4] * (-dC + dC3 / 3.0);
   }
-  switch (a) {
-    case 3:
-      return S - S * S * S / 3.0 - 3.0 * e * (0.5 * p + 0.5 * S * C) + 3.0 * e * e * S -
-             e * e * e * p;
-    case 2:
-      return -(C - e) * (C - e) * (C - e) / 3.0;
-    case 1:
-      return S * S * S / 3.0 - e * (0.5 * p - 0.5 * S * C);
-    default:
-      return -C + C * C * C / 3.0;
-  }
+  return I;
 }
 
 std::string fmt(double x) {
@@ -136,44 +145,43 @@ FilmForce JournalBearing::hydro(const V2& e, const V2& ed, double om, double wei
   M2 T4W = M2::Zero();  // int (W . u) u u^T / h^4 over the positive half circle
   if (closed_form) {
     const double en = e.norm(), eps = en / c;
-    const V2 a1 = en > 0.0 ? V2(-e / en) : V2(1.0, 0.0);  // direction of maximum film
-    M2 Q;
-    Q.col(0) = a1;
-    Q.col(1) = perp(a1);
-    const V2 Wl = Q.transpose() * W;
+    // local basis Q = [a1, perp(a1)], a1 the direction of maximum film
+    const V2 a1 = en > 0.0 ? V2(-e / en) : V2(1.0, 0.0), a2 = perp(a1);
+    const V2 Wl(a1.dot(W), a2.dot(W));
     // limits delta = dW -+ pi/2, dW the direction of W: cos and sin of both from
     // W itself, and psi(hi) - psi(lo) = pi - 2 (atan x_hi - atan x_lo), the
     // difference of the arc tangents (each in (-pi/2, pi/2)) by one atan2
     const double wn = Wl.norm();
     const double cW = wn > 0.0 ? Wl.x() / wn : 1.0, sW = wn > 0.0 ? Wl.y() / wn : 0.0;
-    const Somm lo = sommerfeld(sW, -cW, eps);
-    Somm hi = sommerfeld(-sW, cW, eps);
-    hi.psi = M_PI - 2.0 * std::atan2(hi.x - lo.x, 1.0 + hi.x * lo.x);
-    const double s = 1.0 - eps * eps;
-    // s^(k/2) for the half-integer exponents (b + 1)/2 - n <= 0 below, without pow()
-    const double root_s = std::sqrt(s), inv_s = 1.0 / s;
-    auto half_power = [&](int k) {  // s^(k / 2), k <= 0
-      double r = (-k) % 2 ? 1.0 / root_s : 1.0;
-      for (int j = 0; j < -k / 2; ++j) r *= inv_s;
-      return r;
-    };
-    auto I = [&](int a, int b) {
-      const int n = a + b + 1;
-      return half_power(b + 1 - 2 * n) * (anti(a, b, hi, eps) - anti(a, b, lo, eps));
-    };
+    const double rs = std::sqrt(1.0 - eps * eps);
+    const double k = (1.0 - eps) / rs;  // sqrt((1 - eps) / (1 + eps))
+    const Somm lo = sommerfeld(sW, -cW, eps, k, rs), hi = sommerfeld(-sW, cW, eps, k, rs);
+    const double dpsi = M_PI - 2.0 * std::atan2(hi.x - lo.x, 1.0 + hi.x * lo.x);
+    // s^(-j/2), j = 0..7 (the half-integer exponents (b + 1)/2 - n)
+    double pw[8];
+    pw[0] = 1.0;
+    pw[1] = 1.0 / rs;
+    for (int j = 2; j < 8; ++j) pw[j] = pw[j - 1] * pw[1];
+    const FilmIntegrals I = film_integrals(lo, hi, dpsi, eps, pw, derivs);
+    const double c3 = c * c * c;
+    // M3 in the local basis, and f = -K Q (M3l Wl)
+    const double m11 = I.i20 / c3, m12 = I.i11 / c3, m22 = I.i02 / c3;
+    const V2 fl(m11 * Wl.x() + m12 * Wl.y(), m12 * Wl.x() + m22 * Wl.y());
+    r.f = -K * (fl.x() * a1 + fl.y() * a2);
+    if (!derivs) return r;
+    M2 Q;
+    Q.col(0) = a1;
+    Q.col(1) = a2;
     M2 M3l;
-    M3l << I(2, 0), I(1, 1), I(1, 1), I(0, 2);
-    M3l /= c * c * c;
+    M3l << m11, m12, m12, m22;
     M3 = Q * M3l * Q.transpose();
-    if (derivs) {
-      // T_{ijk} = int u_i u_j u_k / h^4 in the local basis (index 1 = sine).
-      const double c4 = c * c * c * c;
-      const double t30 = I(3, 0) / c4, t21 = I(2, 1) / c4, t12 = I(1, 2) / c4, t03 = I(0, 3) / c4;
-      M2 Tl;
-      Tl << Wl.x() * t30 + Wl.y() * t21, Wl.x() * t21 + Wl.y() * t12, Wl.x() * t21 + Wl.y() * t12,
-          Wl.x() * t12 + Wl.y() * t03;
-      T4W = Q * Tl * Q.transpose();
-    }
+    // T_{ijk} = int u_i u_j u_k / h^4 in the local basis (index 1 = sine).
+    const double c4 = c3 * c;
+    const double t30 = I.i30 / c4, t21 = I.i21 / c4, t12 = I.i12 / c4, t03 = I.i03 / c4;
+    M2 Tl;
+    Tl << Wl.x() * t30 + Wl.y() * t21, Wl.x() * t21 + Wl.y() * t12, Wl.x() * t21 + Wl.y() * t12,
+        Wl.x() * t12 + Wl.y() * t03;
+    T4W = Q * Tl * Q.transpose();
   } else {
     const double phiW = std::atan2(W.y(), W.x());
     for (std::size_t k = 0; k < gl_x_.size(); ++k) {
@@ -185,8 +193,8 @@ FilmForce JournalBearing::hydro(const V2& e, const V2& ed, double om, double wei
       M3 += (wq * ih3) * uu;
       if (derivs) T4W += (wq * W.dot(u) * ih3 / h) * uu;
     }
+    r.f = -K * (M3 * W);
   }
-  r.f = -K * (M3 * W);
   if (derivs) {
     const M2 dW = -K * M3;  // d f / d W
     r.df_ded = dW;
@@ -259,9 +267,9 @@ void JournalBearing::evaluate(double t, const MarkerMotion* m, MarkerLoad* loads
   // (far beyond any tilting rate of a journal in its film), means wrongly oriented
   // markers.
   const Vec3 w_rel = m[1].w - m[0].w;
-  const double w_n = w_rel.norm();
-  const double w_across = a.cross(w_rel).norm();
-  if (w_across > 10.0 && w_across > 0.5 * w_n) {
+  const double w_across2 = a.cross(w_rel).squaredNorm();  // (squares: no root per call)
+  if (w_across2 > 100.0 && w_across2 > 0.25 * w_rel.squaredNorm()) {
+    const double w_n = w_rel.norm(), w_across = std::sqrt(w_across2);
     throw RangeError(
         "journal bearing '" + name() + "': the journal spins about an axis " +
         std::to_string(std::asin(std::min(1.0, w_across / w_n)) * 180 / M_PI) +

@@ -55,7 +55,6 @@ System::System(Model& model) : model_(model) {
       bstack_[markers[m].body].middleRows(mrow_[m], 3) = markers[m].Bu;
       bstack_[markers[m].body].middleRows(mrow_[m] + 3, 3) = markers[m].Bt;
     }
-  bstack_rows_.assign(bstack_.begin(), bstack_.end());
 
   // Pattern: dense diagonal body blocks plus body-pair blocks of every element.
   std::vector<char> pair(static_cast<std::size_t>(nb) * nb, 0);
@@ -78,9 +77,6 @@ System::System(Model& model) : model_(model) {
           PairWork pw;
           pw.bi = bi;
           pw.bj = bj;
-          pw.Y = PairRowMat::Zero(rows[bi], 2 * bodies[bj].n());
-          pw.Yc = pw.Y;
-          pw.Bc = PairRowMat::Zero(rows[bi], bodies[bi].n());
           pw.blk = Mat::Zero(bodies[bi].n(), 2 * bodies[bj].n());
           pairs_.push_back(std::move(pw));
         }
@@ -97,6 +93,7 @@ System::System(Model& model) : model_(model) {
     }
   }
   build_row_sets();
+  build_pair_rows();
   if (rank_ > 0) {
     // M^-1 K = K + U Z^-1 W^T K fills rows of the inertial bodies in the columns of
     // their neighbours (the bodies their rows of K reach).
@@ -237,6 +234,37 @@ void System::build_row_sets() {
   tset_ = row_sets(timed_load);
   ftime_ = Vec::Zero(model_.size());
   t_time_ = std::numeric_limits<double>::quiet_NaN();
+}
+
+void System::build_pair_rows() {
+  const auto& markers = model_.markers();
+  const auto& elements = model_.elements();
+  const int nb = static_cast<int>(model_.bodies().size());
+  for (auto& pw : pairs_) pw.crow.assign(markers.size(), -1);
+  std::vector<int> count(pairs_.size(), 0);
+  for (std::size_t e = 0; e < elements.size(); ++e) {
+    if (is_timed_[e]) continue;  // loads of time alone: D = 0
+    const auto& ids = elements[e]->markers();
+    for (int mi : ids)
+      for (int mj : ids) {
+        const int bi = markers[mi].body, bj = markers[mj].body;
+        if (bi < 0 || bj < 0) continue;
+        const int k = pair_index_[bi * nb + bj];
+        PairWork& pw = pairs_[k];
+        if (pw.crow[mi] < 0) {
+          pw.crow[mi] = count[k];
+          count[k] += 6;
+        }
+      }
+  }
+  for (std::size_t k = 0; k < pairs_.size(); ++k) {
+    PairWork& pw = pairs_[k];
+    const int nj = model_.bodies()[pw.bj].n();
+    pw.Y = PairRowMat::Zero(count[k], 2 * nj);
+    pw.Bc = PairRowMat::Zero(count[k], model_.bodies()[pw.bi].n());
+    for (std::size_t m = 0; m < markers.size(); ++m)
+      if (pw.crow[m] >= 0) pw.Bc.middleRows(pw.crow[m], 6) = bstack_[pw.bi].middleRows(mrow_[m], 6);
+  }
 }
 
 std::vector<System::RowSet> System::row_sets(const std::vector<unsigned>& parts) const {
@@ -529,9 +557,7 @@ void System::force_jacobian(double t, const double* q, const double* v, SpMat& K
     update_markers(t, q, v);
   body_operator(t, K, C);
   const auto& markers = model_.markers();
-  for (auto& pw : pairs_) {
-    pw.Y.setZero();
-  }
+  for (auto& pw : pairs_) pw.Y.setZero();
   const int nb = static_cast<int>(model_.bodies().size());
   for (std::size_t e = 0; e < ework_.size(); ++e) {
     if (is_timed_[e]) continue;  // loads of time alone: D = 0
@@ -574,24 +600,15 @@ void System::force_jacobian(double t, const double* q, const double* v, SpMat& K
         PairWork& pw = pairs_[pair_index_[bi * nb + bj]];
         const auto Bj = bstack_[bj].middleRows<6>(mrow_[ids[j]]);
         const Eigen::Index nj = Bj.cols();
-        pw.Y.block(mrow_[ids[i]], 0, 6, nj).noalias() += LK * Bj;
-        pw.Y.block(mrow_[ids[i]], nj, 6, nj).noalias() += LC * Bj;
+        const int r = pw.crow[static_cast<std::size_t>(ids[i])];
+        pw.Y.block(r, 0, 6, nj).noalias() += LK * Bj;
+        pw.Y.block(r, nj, 6, nj).noalias() += LC * Bj;
       }
     }
   }
-  // f = ... - Q  =>  [K C] -= [Bu; Bt]_i^T [YK YC], over the rows of Y that carry
-  // anything (a marker's moment rows stay zero when no element loads it with a
-  // moment: mounts, liners; the product then skips them).
+  // f = ... - Q  =>  [K C] -= [Bu; Bt]_i^T [YK YC], over the loaded rows
   for (auto& pw : pairs_) {
-    const PairRowMat& B = bstack_rows_[pw.bi];
-    Eigen::Index m = 0;
-    for (Eigen::Index r = 0; r < pw.Y.rows(); ++r)
-      if (!pw.Y.row(r).isZero(0.0)) {
-        pw.Yc.row(m) = pw.Y.row(r);
-        pw.Bc.row(m) = B.row(r);
-        ++m;
-      }
-    pw.blk.noalias() = -pw.Bc.topRows(m).transpose() * pw.Yc.topRows(m);
+    pw.blk.noalias() = -pw.Bc.transpose() * pw.Y;
     const Eigen::Index nj = pw.Y.cols() / 2;
     add_block(K.valuePtr(), pw.bi, pw.bj, pw.blk.leftCols(nj));
     add_block(C.valuePtr(), pw.bi, pw.bj, pw.blk.rightCols(nj));

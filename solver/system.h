@@ -181,7 +181,6 @@ class System : public Problem {
   // the markers cost one matrix-vector product per body and direction.
   std::vector<Mat> bstack_;
   using PairRowMat = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
-  std::vector<PairRowMat> bstack_rows_;  // the same, row-major (row gathers in force_jacobian)
   std::vector<Vec> bq_, bv_, bload_;
   std::vector<int> mrow_;  // per marker: first row in its body's stack (-1: ground)
   // The rows force() computes: the rows some element reads (rset_; unread_: the
@@ -200,12 +199,18 @@ class System : public Problem {
   std::vector<RowSet> lset_, tset_;
   // Jacobian: per body pair an element couples, Y = sum E_ij [Bu; Bt]_j over the
   // marker pairs (6 rows per marker of bi), then K_ij -= [Bu; Bt]_i^T Y.
+  // Only the rows of bi's markers that an element of the pair loads carry
+  // anything: Y keeps those (crow), Bc is the same rows of bi's stack (constant).
   struct PairWork {
     int bi = 0, bj = 0;
-    PairRowMat Y;       // [YK YC]: rows of the markers of bi, 2 n_bj columns
-    PairRowMat Yc, Bc;  // the non-zero rows of Y and the same rows of bi's stack
-    Mat blk;            // -[Bu; Bt]^T [YK YC]
+    std::vector<int> crow;  // per marker of bi: first row in Y (-1: not loaded)
+    PairRowMat Y;           // [YK YC]: the loaded rows of bi, 2 n_bj columns
+    PairRowMat Bc;          // the same rows of bi's stack
+    Mat blk;                // -[Bu; Bt]^T [YK YC]
   };
+  /// crow, Y, Bc of every pair from the elements that are not of time alone
+  /// (after build_row_sets()).
+  void build_pair_rows();
   std::vector<PairWork> pairs_;
   std::vector<int> pair_index_;  // [bi * nb + bj] -> index in pairs_, -1 if none
   // block_start_[bi * nb + bj][c]: value index of the first row of body bi in
