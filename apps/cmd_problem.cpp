@@ -12,6 +12,7 @@
 #include "apps/problem_run.h"
 #include "integrators/integrator.h"
 #include "integrators/settings.h"
+#include "io/text_escape.h"
 #include "problems/library.h"
 
 namespace evas::cli {
@@ -22,6 +23,43 @@ std::string num(double x) {
   std::ostringstream os;
   os << std::setprecision(16) << x;
   return std::isfinite(x) ? os.str() : "null";
+}
+
+// DIR/summary.json of one run: its settings, status ("completed" or "failed:
+// ..."), statistics and, when it completed, its end point and digits. A failed
+// run's summary is written too, so that a sweep over tolerances keeps a record
+// of every case.
+void write_summary(const std::filesystem::path& dir, const problems::LibraryProblem& lp,
+                   const IntegratorSettings& s, const ProblemRun& run) {
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  std::ofstream f(dir / "summary.json");
+  if (!f) throw InputError((dir / "summary.json").string() + ": cannot write the file");
+  const bool ok = run.failure.empty();
+  const IntegratorStats& st = run.stats;
+  f << "{\n  \"problem\": " << json_string(lp.name)
+    << ",\n  \"integrator\": " << json_string(s.name)
+    << ",\n  \"formulation\": " << json_string(s.formulation) << ",\n  \"rtol\": " << num(s.rtol)
+    << ",\n  \"atol\": " << num(s.atol) << ",\n  \"t_end\": " << num(lp.t_end)
+    << ",\n  \"status\": " << json_string(ok ? "completed" : "failed: " + run.failure);
+  if (ok) {
+    const int n = static_cast<int>(run.q.size());
+    f << ",\n  \"mescd\": " << num(run.score.mescd) << ",\n  \"scd\": " << num(run.score.scd)
+      << ",\n  \"mescd_lambda\": " << num(run.score.mescd_lambda) << ",\n  \"q\": [";
+    for (int i = 0; i < n; ++i) f << (i ? ", " : "") << num(run.q(i));
+    f << "],\n  \"v\": [";
+    for (int i = 0; i < n; ++i) f << (i ? ", " : "") << num(run.v(i));
+    f << "]";
+  }
+  f << ",\n  \"steps\": " << st.steps << ",\n  \"residual_evals\": " << st.residual_evals
+    << ",\n  \"jacobian_evals\": " << st.jacobian_evals
+    << ",\n  \"error_test_failures\": " << st.error_test_failures
+    << ",\n  \"convergence_failures\": " << st.convergence_failures
+    << ",\n  \"wall_seconds\": " << num(run.wall);
+  if (ok) f << ",\n  \"max_constraint_end\": " << num(run.g_end);
+  f << "\n}\n";
+  if (!f) throw InputError((dir / "summary.json").string() + ": writing failed");
+  std::cout << "  summary: " << (dir / "summary.json").string() << "\n";
 }
 
 void list_problems() {
@@ -56,7 +94,8 @@ int cmd_problem(const std::vector<std::string>& args) {
       "step of the fixed-step integrators (default t_end / 2000), first step of the others")(
       "set", po::value<std::vector<std::string>>(),
       "KEY=VALUE: any integrator setting, repeatable (evas run --help-settings)")(
-      "out", po::value<std::string>(), "folder for summary.json (and the sweep's files)")(
+      "out", po::value<std::string>(),
+      "folder for summary.json, written also when the run fails (and the sweep's files)")(
       "work-precision",
       "sweep IDA in every formulation over rtol 1e-3..1e-10 and generalized-alpha over 8 "
       "step halvings; writes OUT/work_precision.csv and .png");
@@ -93,6 +132,7 @@ int cmd_problem(const std::vector<std::string>& args) {
   const ProblemRun run = run_problem(lp, s);
   if (!run.failure.empty()) {
     std::cerr << "evas problem: FAILED: " << run.failure << "\n";
+    if (vm.count("out")) write_summary(vm["out"].as<std::string>(), lp, s, run);
     return 2;
   }
   const Vec &q = run.q, &v = run.v;
@@ -122,27 +162,7 @@ int cmd_problem(const std::vector<std::string>& args) {
             << ", factorisations " << st.linear_setups << ", error-test failures "
             << st.error_test_failures << ", convergence failures " << st.convergence_failures
             << ", wall " << wall << " s; at the end |g| " << gmax << "\n";
-
-  if (vm.count("out")) {
-    const std::filesystem::path dir = vm["out"].as<std::string>();
-    std::error_code ec;
-    std::filesystem::create_directories(dir, ec);
-    std::ofstream f(dir / "summary.json");
-    if (!f) throw InputError((dir / "summary.json").string() + ": cannot write the file");
-    f << "{\n  \"problem\": \"" << lp.name << "\",\n  \"integrator\": \"" << s.name
-      << "\",\n  \"formulation\": \"" << s.formulation << "\",\n  \"rtol\": " << num(s.rtol)
-      << ",\n  \"atol\": " << num(s.atol) << ",\n  \"t_end\": " << num(lp.t_end)
-      << ",\n  \"mescd\": " << num(sc.mescd) << ",\n  \"scd\": " << num(sc.scd)
-      << ",\n  \"mescd_lambda\": " << num(sc.mescd_lambda) << ",\n  \"q\": [";
-    for (int i = 0; i < n; ++i) f << (i ? ", " : "") << num(q(i));
-    f << "],\n  \"v\": [";
-    for (int i = 0; i < n; ++i) f << (i ? ", " : "") << num(v(i));
-    f << "],\n  \"steps\": " << st.steps << ",\n  \"residual_evals\": " << st.residual_evals
-      << ",\n  \"jacobian_evals\": " << st.jacobian_evals << ",\n  \"wall_seconds\": " << num(wall)
-      << ",\n  \"max_constraint_end\": " << num(gmax) << "\n}\n";
-    if (!f) throw InputError((dir / "summary.json").string() + ": writing failed");
-    std::cout << "  summary: " << (dir / "summary.json").string() << "\n";
-  }
+  if (vm.count("out")) write_summary(vm["out"].as<std::string>(), lp, s, run);
   return 0;
 }
 

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -213,10 +214,31 @@ TEST(Problems, Command) {
       << text;
   text = run_evas("problem car-axis --formulation index-7", code);
   EXPECT_EQ(code, 1) << text;
-  // linear acceleration's index-3 form diverges (docs/theory.md section 10.5): exit 2
-  text = run_evas("problem pendulum --integrator linear-acceleration --formulation index-3", code);
+  // linear acceleration's index-3 form diverges (docs/theory.md section 10.5): exit 2,
+  // and with --out the summary still records the case: its status and statistics
+  const std::string fail_dir = std::string(EVAS_BINARY_DIR) + "/tests/problem_failed";
+  std::filesystem::remove_all(fail_dir);
+  text = run_evas(
+      "problem pendulum --integrator linear-acceleration --formulation index-3 --out " + fail_dir,
+      code);
   EXPECT_EQ(code, 2) << text;
   EXPECT_NE(text.find("FAILED"), std::string::npos) << text;
+  std::ifstream js(fail_dir + "/summary.json");
+  std::stringstream summary;
+  summary << js.rdbuf();
+  EXPECT_NE(summary.str().find("\"status\": \"failed: "), std::string::npos) << summary.str();
+  EXPECT_NE(summary.str().find("\"steps\": "), std::string::npos) << summary.str();
+  EXPECT_EQ(summary.str().find("\"mescd\""), std::string::npos) << summary.str();
+  // a completed run's summary says so
+  const std::string ok_dir = std::string(EVAS_BINARY_DIR) + "/tests/problem_completed";
+  text = run_evas("problem car-axis --rtol 1e-6 --out " + ok_dir, code);
+  EXPECT_EQ(code, 0) << text;
+  std::ifstream js_ok(ok_dir + "/summary.json");
+  std::stringstream summary_ok;
+  summary_ok << js_ok.rdbuf();
+  EXPECT_NE(summary_ok.str().find("\"status\": \"completed\""), std::string::npos)
+      << summary_ok.str();
+  EXPECT_NE(summary_ok.str().find("\"mescd\": "), std::string::npos) << summary_ok.str();
   text = run_evas("problem car-axis --integrator cvode", code);  // a combination refused
   EXPECT_EQ(code, 1) << text;
   EXPECT_NE(text.find("formulation=penalty"), std::string::npos) << text;
