@@ -608,6 +608,7 @@ void System::force_jacobian(double t, const double* q, const double* v, SpMat& K
   }
   // f = ... - Q  =>  [K C] -= [Bu; Bt]_i^T [YK YC], over the loaded rows
   for (auto& pw : pairs_) {
+    if (pw.Y.rows() == 0) continue;  // coupled by elements of time alone only: D = 0
     pw.blk.noalias() = -pw.Bc.transpose() * pw.Y;
     const Eigen::Index nj = pw.Y.cols() / 2;
     add_block(K.valuePtr(), pw.bi, pw.bj, pw.blk.leftCols(nj));

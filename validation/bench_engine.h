@@ -186,6 +186,7 @@ inline std::vector<EngineRun> engine_runs() {
           {"second-order", 7e-5, 7e-9},
           {"second-order", 1e-5, 1e-9, "generalized-alpha", 1e-5},
           {"second-order", 1e-5, 1e-9, "generalized-alpha", 8e-6},
+          // 1/6 deg at engine.yaml's crank speed of 314.159 rad/s
           {"second-order", 3e-5, 1e-9, "generalized-alpha", M_PI / 180.0 / 314.159 / 6.0},
           {"second-order", 3e-4, 3e-8, "generalized-alpha", 8e-6, "adaptive"},
           {"second-order", 1e-3, 1e-7, "radau", 1e-5, "adaptive"},
