@@ -236,9 +236,11 @@ void read_stored(hid_t file, ModalBody& body) {
 
 ModalBody read_body(hid_t file) {
   ModalBody body;
-  if (!h5::has_attribute(file, "format"))
-    throw h5::Failure("attribute 'format' is missing (not an evas modal-body file)");
-  const std::string format = h5::read_string_attribute(file, "format");
+  // the string attributes in one child process (io/isolated_read.h)
+  const std::vector<std::optional<std::string>> text =
+      h5::read_string_attributes(file, {"format", "name", "length_unit", "mass_unit"});
+  if (!text[0]) throw h5::Failure("attribute 'format' is missing (not an evas modal-body file)");
+  const std::string& format = *text[0];
   if (format != kBodyFormat)
     throw h5::Failure("attribute 'format' is '" + format + "', expected '" + kBodyFormat + "'");
   const long long version = h5::read_int_attribute(file, "version");
@@ -256,17 +258,12 @@ ModalBody read_body(hid_t file) {
       if (body.full_num_nodes < 1) throw h5::Failure("attribute 'full_num_nodes' must be >= 1");
     }
   }
-  body.name = h5::read_string_attribute(file, "name");
-  if (h5::has_attribute(file, "length_unit")) {
-    const std::string u = h5::read_string_attribute(file, "length_unit");
-    if (u != "m")
-      throw h5::Failure("attribute 'length_unit' is '" + u + "', only 'm' is supported");
-  }
-  if (h5::has_attribute(file, "mass_unit")) {
-    const std::string u = h5::read_string_attribute(file, "mass_unit");
-    if (u != "kg")
-      throw h5::Failure("attribute 'mass_unit' is '" + u + "', only 'kg' is supported");
-  }
+  if (!text[1]) throw h5::Failure("attribute 'name' is missing");
+  body.name = *text[1];
+  if (text[2] && *text[2] != "m")
+    throw h5::Failure("attribute 'length_unit' is '" + *text[2] + "', only 'm' is supported");
+  if (text[3] && *text[3] != "kg")
+    throw h5::Failure("attribute 'mass_unit' is '" + *text[3] + "', only 'kg' is supported");
 
   // Nodes.
   std::vector<hsize_t> dims;

@@ -5,6 +5,8 @@
 #include <cstdint>
 #include <cstring>
 
+#include "io/isolated_read.h"
+
 namespace evas::h5 {
 
 namespace {
@@ -261,12 +263,18 @@ std::string read_string_attribute(hid_t obj, const std::string& name) {
   if (H5Tget_class(ftype) != H5T_STRING) throw Failure(attr_name(name) + " is not a string");
   expect_single(a, name);
   if (H5Tis_variable_str(ftype) > 0) {
-    Handle mtype = string_type();
-    char* p = nullptr;
-    if (H5Aread(a, mtype, &p) < 0) throw Failure(attr_name(name) + " cannot be read");
-    std::string s = p ? p : "";
-    H5free_memory(p);
-    return s;
+    // through the global heap, which libhdf5 trusts: in a child (isolated_read.h)
+    return read_isolated(
+               [&] {
+                 Handle mtype = string_type();
+                 char* p = nullptr;
+                 if (H5Aread(a, mtype, &p) < 0) throw Failure(attr_name(name) + " cannot be read");
+                 std::vector<std::string> s{p ? p : ""};
+                 H5free_memory(p);
+                 return s;
+               },
+               attr_name(name))
+        .front();
   }
   const std::size_t size = H5Tget_size(ftype);
   // A fixed-size string longer than the file cannot be stored in it (a forged size).
@@ -278,6 +286,30 @@ std::string read_string_attribute(hid_t obj, const std::string& name) {
   std::vector<char> buf(size + 1, '\0');
   if (H5Aread(a, mtype, buf.data()) < 0) throw Failure(attr_name(name) + " cannot be read");
   return std::string(buf.data());
+}
+
+std::vector<std::optional<std::string>> read_string_attributes(
+    hid_t obj, const std::vector<std::string>& names) {
+  bool variable = false;
+  for (const std::string& n : names) {
+    if (!has_attribute(obj, n)) continue;
+    Handle a = open_attribute(obj, n);
+    Handle t(H5Aget_type(a), H5Tclose);
+    variable = variable || (H5Tget_class(t) == H5T_STRING && H5Tis_variable_str(t) > 0);
+  }
+  auto read = [&] {  // "" for a missing attribute, "=" + value for one present
+    std::vector<std::string> v;
+    for (const std::string& n : names)
+      v.push_back(has_attribute(obj, n) ? "=" + read_string_attribute(obj, n) : "");
+    return v;
+  };
+  std::string what;
+  for (const std::string& n : names) what += (what.empty() ? "" : ", ") + ("'" + n + "'");
+  const std::vector<std::string> v = variable ? read_isolated(read, "attribute " + what) : read();
+  std::vector<std::optional<std::string>> out(names.size());
+  for (std::size_t i = 0; i < names.size() && i < v.size(); ++i)
+    if (!v[i].empty()) out[i] = v[i].substr(1);
+  return out;
 }
 
 long long read_int_attribute(hid_t obj, const std::string& name) {
@@ -347,15 +379,24 @@ std::vector<std::string> read_strings(hid_t loc, const std::string& name) {
   std::vector<std::string> out;
   if (n == 0) return out;
   if (H5Tis_variable_str(ftype) > 0) {
-    Handle mtype = string_type();
-    std::vector<char*> ptrs(n, nullptr);
-    if (H5Dread(dset, mtype, H5S_ALL, H5S_ALL, H5P_DEFAULT, ptrs.data()) < 0)
-      throw Failure(dset_name(name) + " cannot be read");
-    for (char* p : ptrs) {
-      out.emplace_back(p ? p : "");
-      H5free_memory(p);
-    }
-    return out;
+    // through the global heap, which libhdf5 trusts: in a child (isolated_read.h)
+    if (exceeds_file(static_cast<long double>(n) * sizeof(char*), dset))
+      throw Failure(dset_name(name) + " declares " + std::to_string(n) +
+                    " strings, more than the file holds (corrupt file?)");
+    return read_isolated(
+        [&] {
+          Handle mtype = string_type();
+          std::vector<char*> ptrs(n, nullptr);
+          if (H5Dread(dset, mtype, H5S_ALL, H5S_ALL, H5P_DEFAULT, ptrs.data()) < 0)
+            throw Failure(dset_name(name) + " cannot be read");
+          std::vector<std::string> v;
+          for (char* p : ptrs) {
+            v.emplace_back(p ? p : "");
+            H5free_memory(p);
+          }
+          return v;
+        },
+        dset_name(name));
   }
   const std::size_t size = H5Tget_size(ftype);
   if (exceeds_file(static_cast<long double>(n) * size, dset))

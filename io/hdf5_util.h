@@ -9,6 +9,7 @@
 
 #include <hdf5.h>
 
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -75,6 +76,10 @@ void write_attribute(hid_t obj, const std::string& name, const std::string& valu
 void write_attribute(hid_t obj, const std::string& name, long long value);
 void write_attribute(hid_t obj, const std::string& name, double value);
 std::string read_string_attribute(hid_t obj, const std::string& name);
+/// The string attributes `names` of obj, empty where one is missing, read in one
+/// child process when any is variable-length (isolated_read.h).
+std::vector<std::optional<std::string>> read_string_attributes(
+    hid_t obj, const std::vector<std::string>& names);
 long long read_int_attribute(hid_t obj, const std::string& name);
 double read_double_attribute(hid_t obj, const std::string& name);
 

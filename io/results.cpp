@@ -10,6 +10,8 @@
 #include <sstream>
 
 #include "integrators/settings.h"
+#include "io/hdf5_util.h"
+#include "io/isolated_read.h"
 #include "io/text_escape.h"
 
 #ifndef EVAS_BUILD_ARCH  // set by CMakeLists.txt
@@ -389,19 +391,37 @@ ResultsData read_results(const std::string& path) {
   h5::Quiet quiet;
   try {
     h5::Handle file = h5::open_file(path);
-    for (const char* key : {"scene", "integrator", "grid", "status"}) {
-      if (!h5::has_attribute(file, key)) continue;
-      const std::string v = h5::read_string_attribute(file, key);
-      if (std::string(key) == "scene") d.scene = v;
-      if (std::string(key) == "integrator") d.integrator = v;
-      if (std::string(key) == "grid") d.grid = v;
-      if (std::string(key) == "status") d.status = v;
-    }
     std::vector<hsize_t> dims;
     d.time = h5::read_doubles(file, "/time", dims);
     if (dims.size() != 1) throw h5::Failure("dataset '/time' must be one-dimensional");
-    d.names = h5::read_strings(file, "/channels/names");
-    d.units = h5::read_strings(file, "/channels/units");
+    // the variable-length strings in one child process (io/isolated_read.h):
+    // the four attributes ("" when missing, "=" + value), the count of
+    // channels, their names, their units
+    const std::vector<std::string> text = h5::read_isolated(
+        [&] {
+          std::vector<std::string> v;
+          for (const auto& a :
+               h5::read_string_attributes(file, {"scene", "integrator", "grid", "status"}))
+            v.push_back(a ? "=" + *a : "");
+          const std::vector<std::string> names = h5::read_strings(file, "/channels/names");
+          const std::vector<std::string> units = h5::read_strings(file, "/channels/units");
+          v.push_back(std::to_string(names.size()));
+          v.insert(v.end(), names.begin(), names.end());
+          v.insert(v.end(), units.begin(), units.end());
+          return v;
+        },
+        "the attributes and datasets '/channels/names', '/channels/units'");
+    if (text.size() < 5) throw h5::Failure("the channel names cannot be read");
+    auto attr = [&](std::size_t i) { return text[i].empty() ? "" : text[i].substr(1); };
+    d.scene = attr(0);
+    d.integrator = attr(1);
+    d.grid = attr(2);
+    d.status = attr(3);
+    const std::size_t n_names = static_cast<std::size_t>(std::stoull(text[4]));
+    if (n_names > text.size() - 5) throw h5::Failure("the channel names cannot be read");
+    const auto names = text.begin() + 5;
+    d.names.assign(names, names + static_cast<std::ptrdiff_t>(n_names));
+    d.units.assign(names + static_cast<std::ptrdiff_t>(n_names), text.end());
     if (d.units.size() != d.names.size())
       throw h5::Failure("datasets '/channels/names' and '/channels/units' differ in length");
     const std::size_t nc = d.names.size(), nt = d.time.size();

@@ -5,6 +5,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <fstream>
 #include <sstream>
 
@@ -240,5 +242,36 @@ TEST(Results, DeclaredShapeBeyondTheStoredDataIsRefused) {
     const std::string msg = e.what();
     EXPECT_NE(msg.find("huge_dims.h5"), std::string::npos) << msg;
     EXPECT_NE(msg.find("declares"), std::string::npos) << msg;
+  }
+}
+
+// A results file whose first global-heap object (the variable-length strings:
+// attributes, channel names and units) claims 2^31 bytes: libhdf5 1.10.8 copies
+// past its buffer on such a read, which ended the process by SIGSEGV. The read
+// now runs in a child process (io/isolated_read.h): a clear error naming the
+// file, and this process goes on. The object's layout: HDF5 File Format
+// Specification 2.0, section III.E (collection header 16 bytes; object index 2,
+// reference count 2, reserved 4, size 8).
+TEST(Results, CorruptHeapObjectIsRefusedNotACrash) {
+  const std::string path = tmp_path("heap.h5");
+  {
+    ResultsWriter w(path, two_channels(), options(4));
+    for (int i = 0; i < 8; ++i) w.append(1e-3 * i, {1.0, 2.0});
+    w.finish(IntegratorStats{}, "completed");
+  }
+  std::string bytes = read_text(path);
+  const std::size_t col = bytes.find("GCOL");
+  ASSERT_NE(col, std::string::npos);
+  const std::uint64_t size = std::uint64_t{1} << 31;
+  std::memcpy(&bytes[col + 16 + 8], &size, 8);
+  std::ofstream(path, std::ios::binary | std::ios::trunc)
+      .write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+  try {
+    read_results(path);
+    FAIL() << "a corrupt heap object was read";
+  } catch (const InputError& e) {
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find("heap.h5"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("cannot be read"), std::string::npos) << msg;
   }
 }
