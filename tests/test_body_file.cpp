@@ -4,10 +4,10 @@
 
 #include <cstdint>
 #include <cstdio>
-#include <cstring>
 #include <fstream>
 #include <iterator>
 
+#include "hdf5_heap.h"
 #include "io/body_file.h"
 #include "io/hdf5_util.h"
 
@@ -268,28 +268,6 @@ TEST(BodyFile, StorageLargerThanTheFile) {
   expect_error(path, {"external.h5", "'/nodes/ids'", "the file stores only"});
 }
 
-// Overwrites, in the raw bytes of an HDF5 file, the size of the first object of
-// its first global-heap collection (signature "GCOL"; the layout of a heap
-// object, HDF5 File Format Specification 2.0, section III.E: index 2 bytes,
-// reference count 2, reserved 4, size 8, then the data) with `size`. The
-// variable-length string attributes of a body file live there.
-static void corrupt_heap_object_size(const std::string& path, std::uint64_t size) {
-  std::string bytes;
-  {
-    std::ifstream in(path, std::ios::binary);
-    bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-  }
-  const std::size_t col = bytes.find("GCOL");
-  ASSERT_NE(col, std::string::npos) << "no global heap in " << path;
-  const std::size_t object = col + 16;  // signature 4, version 1, reserved 3, collection size 8
-  std::uint16_t index = 0;
-  std::memcpy(&index, bytes.data() + object, 2);
-  ASSERT_EQ(index, 1) << "the first heap object of " << path << " is not object 1";
-  std::memcpy(&bytes[object + 8], &size, 8);
-  std::ofstream out(path, std::ios::binary | std::ios::trunc);
-  out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-}
-
 // libhdf5 1.10.8 trusts a global-heap object's size when it reads a
 // variable-length string: a size of 2^31 in a 10 kB file made it copy past its
 // buffer, and evas ended by SIGSEGV (found by fuzz_body_file, docs/fuzzing.md).
@@ -299,7 +277,7 @@ TEST(BodyFile, CorruptHeapObjectIsRefusedNotACrash) {
   for (const std::uint64_t size : {std::uint64_t{1} << 31, std::uint64_t{1} << 62}) {
     const std::string path = tmp_path("heap.h5");
     write_body_file(path, small_body(false));
-    corrupt_heap_object_size(path, size);
+    test_hdf5::corrupt_first_heap_object_size(path, size);
     expect_error(path, {"heap.h5", "'format'", "cannot be read", "corrupt file?"});
   }
   // the same file undamaged still reads (the strings come back from the child)

@@ -6,10 +6,10 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <cstring>
 #include <fstream>
 #include <sstream>
 
+#include "hdf5_heap.h"
 #include "integrators/settings.h"
 #include "io/results.h"
 
@@ -38,6 +38,13 @@ std::string read_text(const std::string& path) {
   std::stringstream ss;
   ss << f.rdbuf();
   return ss.str();
+}
+
+// A completed file of eight rows of two_channels(), flushed every four.
+void write_eight_rows(const std::string& path) {
+  ResultsWriter w(path, two_channels(), options(4));
+  for (int i = 0; i < 8; ++i) w.append(1e-3 * i, {1.0, 2.0});
+  w.finish(IntegratorStats{}, "completed");
 }
 
 }  // namespace
@@ -222,11 +229,7 @@ TEST(Results, DeclaredShapeBeyondTheStoredDataIsRefused) {
   // A corrupt results file whose /time declares 10^12 rows (the extendible
   // dataset grown without data): a clear error before any allocation.
   const std::string path = tmp_path("huge_dims.h5");
-  {
-    ResultsWriter w(path, two_channels(), options(4));
-    for (int i = 0; i < 8; ++i) w.append(1e-3 * i, {1.0, 2.0});
-    w.finish(IntegratorStats{}, "completed");
-  }
+  write_eight_rows(path);
   const hid_t f = H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
   ASSERT_GE(f, 0);
   const hid_t d = H5Dopen2(f, "/time", H5P_DEFAULT);
@@ -249,23 +252,11 @@ TEST(Results, DeclaredShapeBeyondTheStoredDataIsRefused) {
 // attributes, channel names and units) claims 2^31 bytes: libhdf5 1.10.8 copies
 // past its buffer on such a read, which ended the process by SIGSEGV. The read
 // now runs in a child process (io/isolated_read.h): a clear error naming the
-// file, and this process goes on. The object's layout: HDF5 File Format
-// Specification 2.0, section III.E (collection header 16 bytes; object index 2,
-// reference count 2, reserved 4, size 8).
+// file, and this process goes on.
 TEST(Results, CorruptHeapObjectIsRefusedNotACrash) {
   const std::string path = tmp_path("heap.h5");
-  {
-    ResultsWriter w(path, two_channels(), options(4));
-    for (int i = 0; i < 8; ++i) w.append(1e-3 * i, {1.0, 2.0});
-    w.finish(IntegratorStats{}, "completed");
-  }
-  std::string bytes = read_text(path);
-  const std::size_t col = bytes.find("GCOL");
-  ASSERT_NE(col, std::string::npos);
-  const std::uint64_t size = std::uint64_t{1} << 31;
-  std::memcpy(&bytes[col + 16 + 8], &size, 8);
-  std::ofstream(path, std::ios::binary | std::ios::trunc)
-      .write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+  write_eight_rows(path);
+  test_hdf5::corrupt_first_heap_object_size(path, std::uint64_t{1} << 31);
   try {
     read_results(path);
     FAIL() << "a corrupt heap object was read";
