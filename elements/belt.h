@@ -46,6 +46,8 @@ class Belt : public Element {
        const Vec3& normal, std::vector<int> order = {}, int frame_marker = -1,
        const Vec3& reference = Vec3::Zero());
   std::string type() const override { return "belt"; }
+  /// The span tensions are forces on the pulleys' centres.
+  unsigned load_parts(std::size_t) const override { return kLoadsForce; }
   void evaluate(double t, const MarkerMotion* m, MarkerLoad* loads) const override;
   void derivatives(double t, const MarkerMotion* m, Mat& D) const override;
   /// Per pulley p (marker order): pulley<p>_fx, pulley<p>_fy [N] in the belt frame

@@ -54,6 +54,15 @@ class Element {
     (void)slot;
     return kReadsTranslation | kReadsRotation;
   }
+  /// What the loads put on the marker in `slot`: kLoadsForce (F), kLoadsMoment
+  /// (M), both or neither. System::force() maps back only what some element
+  /// declares: a part the declaration leaves out is dropped there (the residual
+  /// from every row, which tests compare, keeps it). Default: both.
+  static constexpr unsigned kLoadsForce = 1, kLoadsMoment = 2;
+  virtual unsigned load_parts(std::size_t slot) const {
+    (void)slot;
+    return kLoadsForce | kLoadsMoment;
+  }
 
   /// Inertial loads (beyond the paper; e.g. the coupled piston's reciprocating
   /// mass). An element of rank r > 0 has loads that are affine in the marker

@@ -46,6 +46,15 @@ class EngineMount : public Element {
   bool needs_rotation(std::size_t) const override {
     return (kr_.array() != 0.0).any() || (cr_.array() != 0.0).any();
   }
+  /// Rotations only with rotational stiffness or damping (kr, cr).
+  unsigned motion_reads(std::size_t slot) const override {
+    return kReadsTranslation | (needs_rotation(slot) ? kReadsRotation : 0u);
+  }
+  /// The block (marker 1) takes a moment only with kr, cr; the support always
+  /// (the force's lever arm p1 - p0).
+  unsigned load_parts(std::size_t slot) const override {
+    return kLoadsForce | (slot == 0 || needs_rotation(slot) ? kLoadsMoment : 0u);
+  }
   EngineMount(std::string name, std::vector<int> markers, std::array<ForceLaw, 3> laws,
               const Vec3& damping, const Vec3& preload, const Vec3& rot_stiffness,
               const Vec3& rot_damping, const Vec3& orientation = Vec3::Zero(),

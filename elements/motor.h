@@ -42,6 +42,8 @@ class Motor : public Element {
   /// The twist is read from both markers' rotation about the axis.
   bool needs_rotation(std::size_t) const override { return true; }
   unsigned motion_reads(std::size_t) const override { return kReadsRotation; }
+  /// A torque about the axis on both markers, no force.
+  unsigned load_parts(std::size_t) const override { return kLoadsMoment; }
   /// axis: any non-zero vector (normalised); speed [rad/s]; theta0 [rad].
   Motor(std::string name, std::vector<int> markers, const Vec3& axis, double speed, double theta0,
         double K_r, double C_r, double K_c = 0.0, double C_c = 0.0);

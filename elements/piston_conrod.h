@@ -98,6 +98,10 @@ class PistonConrod : public Element {
   unsigned motion_reads(std::size_t slot) const override {
     return p_.coupled && slot < 2 ? kReadsRotation : 0u;
   }
+  /// Forces on the crankpin and the head; force and moment on the liner.
+  unsigned load_parts(std::size_t slot) const override {
+    return slot == 1 ? kLoadsForce | kLoadsMoment : kLoadsForce;
+  }
   /// `gas` may be null (no gas force). Throws InputError on inconsistent geometry.
   PistonConrod(std::string name, std::vector<int> markers, const PistonConrodParams& p,
                std::shared_ptr<const PressureTable> gas);

@@ -30,6 +30,11 @@ class ThrustBearing : public Element {
   ThrustBearing(std::string name, std::vector<int> markers, ClearanceLaw law, double damping,
                 bool damp_always, const Vec3& axis = Vec3::UnitZ(), double offset = 0.0);
   std::string type() const override { return "thrust-bearing"; }
+  /// Translations only; the collar (marker 0) takes the force's moment, the shaft none.
+  unsigned motion_reads(std::size_t) const override { return kReadsTranslation; }
+  unsigned load_parts(std::size_t slot) const override {
+    return slot == 0 ? kLoadsForce | kLoadsMoment : kLoadsForce;
+  }
   void evaluate(double t, const MarkerMotion* m, MarkerLoad* loads) const override;
   void derivatives(double t, const MarkerMotion* m, Mat& D) const override;
   /// force [N] (axial load on the shaft), displacement d [m], clearance gap - |d| [m]

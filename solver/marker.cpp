@@ -104,6 +104,21 @@ void marker_motion(const Marker& m, const LofState& L, const Vec3& uq, const Vec
     out.al.setZero();
     return;
   }
+  marker_motion(m, L, L.R_GL * m.R_LM, uq, tq, uv, tv, out);
+}
+
+void marker_motion(const Marker& m, const LofState& L, const Mat3& R_GM, const Vec3& uq,
+                   const Vec3& tq, const Vec3& uv, const Vec3& tv, MarkerMotion& out) {
+  out.R = R_GM;
+  if (L.w_GL_G.isZero(0.0) && L.al_GL_G.isZero(0.0)) {  // a frame that does not turn
+    out.p = L.p_GL + L.R_GL * (m.c + uq);
+    out.v = L.v_GL + L.R_GL * uv;
+    out.psi = L.psi_G + L.R_GL * tq;
+    out.w = L.R_GL * tv;
+    out.a = L.a_GL;
+    out.al.setZero();
+    return;
+  }
   const Vec3 r_G = L.R_GL * (m.c + uq);
   out.p = L.p_GL + r_G;
   const Vec3 u_G = L.R_GL * uv;
@@ -112,7 +127,6 @@ void marker_motion(const Marker& m, const LofState& L, const Vec3& uq, const Vec
   out.v = L.v_GL + wr + u_G;
   out.psi = L.psi_G + L.R_GL * tq;
   out.w = L.w_GL_G + t_G;
-  out.R.noalias() = L.R_GL * m.R_LM;
   out.a = L.a_GL + L.al_GL_G.cross(r_G) + L.w_GL_G.cross(wr) + 2.0 * L.w_GL_G.cross(u_G);
   out.al = L.al_GL_G + L.w_GL_G.cross(t_G);
 }

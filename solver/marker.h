@@ -71,5 +71,9 @@ void marker_motion(const Marker& m, const LofState& L, const double* q, const do
 /// (L components; System computes them for all markers of a body at once).
 void marker_motion(const Marker& m, const LofState& L, const Vec3& uq, const Vec3& tq,
                    const Vec3& uv, const Vec3& tv, MarkerMotion& out);
+/// The same for a marker on a body with its axes R_GM = R_GL R_LM given (System
+/// keeps them per time).
+void marker_motion(const Marker& m, const LofState& L, const Mat3& R_GM, const Vec3& uq,
+                   const Vec3& tq, const Vec3& uv, const Vec3& tv, MarkerMotion& out);
 
 }  // namespace evas

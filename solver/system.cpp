@@ -20,6 +20,7 @@ System::System(Model& model) : model_(model) {
   }
   const auto& markers = model_.markers();
   motion_.resize(markers.size());
+  axes_.assign(markers.size(), Mat3::Identity());
   static const LofState ground;
   for (std::size_t m = 0; m < markers.size(); ++m)
     if (markers[m].on_ground()) marker_motion(markers[m], ground, nullptr, nullptr, motion_[m]);
@@ -55,6 +56,8 @@ System::System(Model& model) : model_(model) {
       bstack_[markers[m].body].middleRows(mrow_[m], 3) = markers[m].Bu;
       bstack_[markers[m].body].middleRows(mrow_[m] + 3, 3) = markers[m].Bt;
     }
+  bstackT_.resize(nb);
+  for (int b = 0; b < nb; ++b) bstackT_[b] = bstack_[b].transpose();
 
   // Pattern: dense diagonal body blocks plus body-pair blocks of every element.
   std::vector<char> pair(static_cast<std::size_t>(nb) * nb, 0);
@@ -180,6 +183,9 @@ void System::update_lof(double t) {
       w.built = true;
     }
   }
+  const auto& markers = model_.markers();
+  for (std::size_t m = 0; m < markers.size(); ++m)
+    if (!markers[m].on_ground()) axes_[m].noalias() = lof_[markers[m].body].R_GL * markers[m].R_LM;
   t_lof_ = t;
 }
 
@@ -203,7 +209,6 @@ void System::add_rotation_correction(const Body& B, const Vec3& w_L, const Vec3&
 void System::build_row_sets() {
   const auto& markers = model_.markers();
   const auto& elements = model_.elements();
-  constexpr unsigned kAll = Element::kReadsTranslation | Element::kReadsRotation;
   // rows read: per marker the union of its elements' motion_reads()
   std::vector<unsigned> reads(markers.size(), 0u), loaded(markers.size(), 0u),
       timed_load(markers.size(), 0u);
@@ -225,7 +230,8 @@ void System::build_row_sets() {
       loaded_.push_back(static_cast<int>(e));
     }
     if (el.inertia_rank() == 0)
-      for (int m : el.markers()) (timed ? timed_load : loaded)[m] = kAll;
+      for (std::size_t i = 0; i < el.markers().size(); ++i)
+        (timed ? timed_load : loaded)[el.markers()[i]] |= el.load_parts(i);
   }
   unread_.resize(markers.size());
   for (std::size_t m = 0; m < markers.size(); ++m) unread_[m] = reads[m] == 0u;
@@ -233,7 +239,9 @@ void System::build_row_sets() {
   lset_ = row_sets(loaded);
   tset_ = row_sets(timed_load);
   ftime_ = Vec::Zero(model_.size());
-  t_time_ = std::numeric_limits<double>::quiet_NaN();
+  ftime_full_ = Vec::Zero(model_.size());
+  t_time_ = t_time_full_ = std::numeric_limits<double>::quiet_NaN();
+  build_slot_rows();
 }
 
 void System::build_pair_rows() {
@@ -273,17 +281,21 @@ std::vector<System::RowSet> System::row_sets(const std::vector<unsigned>& parts)
   std::vector<RowSet> sets(bodies.size());
   for (std::size_t b = 0; b < bodies.size(); ++b) {
     RowSet& set = sets[b];
+    set.tpos.assign(markers.size(), -1);
+    set.rpos.assign(markers.size(), -1);
     for (std::size_t m = 0; m < markers.size(); ++m) {
       if (markers[m].body != static_cast<int>(b)) continue;
-      for (int k = 0; k < 6; ++k)
-        if (parts[m] & (k < 3 ? Element::kReadsTranslation : Element::kReadsRotation))
-          set.rows.push_back(mrow_[m] + k);
+      for (int half = 0; half < 2; ++half) {
+        if (!(parts[m] & (half == 0 ? 1u : 2u))) continue;
+        (half == 0 ? set.tpos : set.rpos)[m] = static_cast<int>(set.rows.size());
+        for (int k = 0; k < 3; ++k) set.rows.push_back(mrow_[m] + 3 * half + k);
+      }
     }
     set.all = static_cast<Eigen::Index>(set.rows.size()) == bstack_[b].rows();
-    if (set.all) continue;
     set.stack = Mat(static_cast<Eigen::Index>(set.rows.size()), bodies[b].n());
     for (std::size_t k = 0; k < set.rows.size(); ++k)
       set.stack.row(static_cast<Eigen::Index>(k)) = bstack_[b].row(set.rows[k]);
+    set.stackT = set.stack.transpose();
     set.y = Vec::Zero(set.stack.rows());
     set.z = Vec::Zero(set.stack.rows());
   }
@@ -318,11 +330,11 @@ void System::update_markers(double t, const double* q, const double* v, bool rea
     const int b = markers[m].body;
     if (b < 0) continue;             // ground: constant, set by the constructor
     if (reads_only && unread_[m]) {  // only the axes (from the frame) are read
-      motion_[m].R.noalias() = lof_[b].R_GL * markers[m].R_LM;
+      motion_[m].R = axes_[m];
       continue;
     }
     const int r = mrow_[m];
-    marker_motion(markers[m], lof_[b], bq_[b].segment<3>(r), bq_[b].segment<3>(r + 3),
+    marker_motion(markers[m], lof_[b], axes_[m], bq_[b].segment<3>(r), bq_[b].segment<3>(r + 3),
                   bv_[b].segment<3>(r), bv_[b].segment<3>(r + 3), motion_[m]);
   }
 }
@@ -361,47 +373,51 @@ void System::load_element(int e, double t) {
   for (std::size_t i = 0; i < ids.size(); ++i) accumulate_load(ids[i], w.loads[i].F, w.loads[i].M);
 }
 
-void System::flush_loads(double* f, std::vector<RowSet>& sets) {
+void System::flush_all_loads(double* f) {
   const auto& bodies = model_.bodies();
   for (std::size_t b = 0; b < bodies.size(); ++b) {
     Eigen::Map<Vec> fb(f + bodies[b].offset, bodies[b].n());
-    RowSet& set = sets[b];
-    if (set.all) {
-      fb.noalias() -= bstack_[b].transpose() * bload_[b];
-      continue;
-    }
-    for (std::size_t k = 0; k < set.rows.size(); ++k) set.y[k] = bload_[b][set.rows[k]];
-    fb.noalias() -= set.stack.transpose() * set.y;
+    fb.noalias() -= bstackT_[b] * bload_[b];
   }
 }
 
-void System::time_loads(double t) {
+void System::time_loads_full(double t) {
   for (auto& l : bload_) l.setZero();
   for (int e : timed_) load_element(e, t);
-  ftime_.setZero();
-  flush_loads(ftime_.data(), tset_);
-  t_time_ = t;
+  ftime_full_.setZero();
+  flush_all_loads(ftime_full_.data());
+  t_time_full_ = t;
 }
 
-void System::force_impl(double t, const double* q, const double* v, double* f, bool reads_only) {
-  update_markers(t, q, v, reads_only);
-  if (!timed_.empty() && t != t_time_) time_loads(t);
+void System::body_terms(const double* q, const double* v, const Vec& ftime, double* f) const {
   const auto& bodies = model_.bodies();
   for (std::size_t b = 0; b < bodies.size(); ++b) {
     const Body& B = bodies[b];
     const BodyWork& W = bwork_[b];
     Eigen::Map<const Vec> qb(q + B.offset, B.n()), vb(v + B.offset, B.n());
     Eigen::Map<Vec> fb(f + B.offset, B.n());
-    fb = W.f0 + ftime_.segment(B.offset, B.n()) + B.data->eigenvalues.cwiseProduct(qb) +
+    fb = W.f0 + ftime.segment(B.offset, B.n()) + B.data->eigenvalues.cwiseProduct(qb) +
          B.data->damping.cwiseProduct(vb);
     if (!W.frame_free) {  // (a fixed frame: KW = G = 0)
       fb.noalias() += W.KW * qb;
       fb.noalias() += W.G * vb;
     }
   }
+}
+
+void System::force_impl(double t, const double* q, const double* v, double* f, bool reads_only) {
+  if (reads_only) {  // (callers ask for it only without inertial elements)
+    force_rows(t, q, v, f);
+    return;
+  }
+  // every marker row; the loads of time alone from every row too, so that a
+  // wrong Element::load_parts() of theirs shows against force_rows()
+  update_markers(t, q, v, false);
+  if (!timed_.empty() && t != t_time_full_) time_loads_full(t);
+  body_terms(q, v, ftime_full_, f);
   for (auto& l : bload_) l.setZero();
   for (int e : loaded_) load_element(e, t);
-  flush_loads(f, lset_);
+  flush_all_loads(f);
   if (rank_ > 0) solve_inertia(t, f);
 }
 
@@ -669,7 +685,7 @@ bool System::at_stop(double t, double* q, double* v) {
     reanchor(static_cast<int>(b), t, q, v);
     changed = true;
   }
-  if (changed) t_lof_ = t_time_ = std::numeric_limits<double>::quiet_NaN();
+  if (changed) t_lof_ = t_time_ = t_time_full_ = std::numeric_limits<double>::quiet_NaN();
   return changed;
 }
 

@@ -119,17 +119,41 @@ class System : public Problem {
   /// (then the stack itself is used and the rest is empty).
   struct RowSet {
     std::vector<int> rows;
-    Mat stack;
+    Mat stack;   // those rows of the body's stack (all of them when `all`)
+    Mat stackT;  // stack^T, stored: the loads back by a column-major product
     Vec y, z;
+    std::vector<int> tpos, rpos;  // per marker of the body: first translation /
+                                  // rotation row in y (-1: not in the set)
     bool all = true;
   };
-  /// Per body the rows of `parts` (per marker: Element::kReads* bits).
+  /// Per body the rows of `parts` (per marker: bit 1 the translation or force
+  /// rows, bit 2 the rotation or moment rows).
   std::vector<RowSet> row_sets(const std::vector<unsigned>& parts) const;
-  /// f -= the loads in bload_ on the rows of `sets` (per body; the other rows of
-  /// bload_ must be zero).
-  void flush_loads(double* f, std::vector<RowSet>& sets);
-  /// ftime_ = the generalised loads of the elements of time alone at t.
+  /// f = the bodies' own terms (Eq. 1 without the element loads) + ftime.
+  void body_terms(const double* q, const double* v, const Vec& ftime, double* f) const;
+
+  // ---- The residual from the rows the elements read (solver/system_rows.cpp) ----
+  // force() with reads_only (no inertial elements): the marker products give the
+  // rows some element reads (rset_), each element slot's motion is made from them
+  // in place, and its loads go straight to the rows of its marker that some
+  // element loads (lset_; of time alone: tset_). No full marker rows, no copies.
+  struct SlotRows {
+    int body = -1;         // -1: ground (its motion is constant, set at set-up)
+    int uq = -1, tq = -1;  // translation / rotation rows in rset_[body].y, .z
+    int fl = -1, ml = -1;  // force / moment rows in the element's load set
+  };
+  std::vector<std::vector<SlotRows>> slot_rows_;  // per element
+  /// slot_rows_ from rset_, lset_, tset_ (after build_row_sets()).
+  void build_slot_rows();
+  void force_rows(double t, const double* q, const double* v, double* f);
+  /// Element e's slots' motion from rset_ (current), its loads added to `sets`.
+  void load_element_rows(int e, double t, std::vector<RowSet>& sets);
+  /// ftime_ = the generalised loads of the elements of time alone at t (rows of tset_).
   void time_loads(double t);
+  /// ftime_full_: the same from every row (the full path, which tests compare).
+  void time_loads_full(double t);
+  /// f -= bstackT_ bload_ per body (every row).
+  void flush_all_loads(double* f);
   /// Inertial elements: f_0 -> M^-1 f_0; leaves their ElementWork::motion at the
   /// solved accelerations and U_, W_, lu_ for apply_inverse_mass().
   void solve_inertia(double t, double* f);
@@ -180,6 +204,7 @@ class System : public Problem {
   // their products with q_b, v_b, and the marker loads in L components, so that
   // the markers cost one matrix-vector product per body and direction.
   std::vector<Mat> bstack_;
+  std::vector<Mat> bstackT_;  // bstack_ transposed (the loads back by column-major products)
   using PairRowMat = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
   std::vector<Vec> bq_, bv_, bload_;
   std::vector<int> mrow_;  // per marker: first row in its body's stack (-1: ground)
@@ -194,8 +219,10 @@ class System : public Problem {
   // of theirs (lset_), each residual: loaded_ (no inertia, not of time alone).
   std::vector<int> timed_, loaded_;
   std::vector<char> is_timed_;
-  Vec ftime_;
+  Vec ftime_, ftime_full_;
   double t_time_ = std::numeric_limits<double>::quiet_NaN();
+  double t_time_full_ = std::numeric_limits<double>::quiet_NaN();
+  std::vector<Mat3> axes_;  // per body marker: its axes R_GL R_LM at t_lof_
   std::vector<RowSet> lset_, tset_;
   // Jacobian: per body pair an element couples, Y = sum E_ij [Bu; Bt]_j over the
   // marker pairs (6 rows per marker of bi), then K_ij -= [Bu; Bt]_i^T Y.
