@@ -58,6 +58,9 @@ SecondOrderSolver::SecondOrderSolver(const SpMat& pattern)
     S_ = Mat::Identity(n_, n_);
     Cd_ = Mat::Zero(n_, n_);
     Sinv_ = Mat::Identity(n_, n_);
+    inverse_work_.piv.assign(static_cast<std::size_t>(n_), 0);
+    inverse_work_.U = Mat::Zero(n_, 4);
+    inverse_work_.d.assign(4, 0.0);
     invert_after_ = kInvertAfter;
     lu_ = std::make_unique<Eigen::PartialPivLU<Eigen::Ref<Mat>>>(S_);
     Ss_.resize(0, 0);
@@ -111,13 +114,22 @@ bool SecondOrderSolver::factor_matrix(double kk, double cc, double ii) {
       for (int k = outer[col]; k < outer[col + 1]; ++k) s[inner[k]] += kk * kv[k] + cc * cv[k];
     }
     S_.diagonal().array() += ii;
-    lu_->compute(S_);  // in place: S_ now holds L and U
-    // singular when a pivot vanishes against the largest (no allocation, unlike rcond())
-    const auto u = S_.diagonal().cwiseAbs();
     // a matrix like the last one, which served more solves than the inverse
-    // costs, is inverted on its first solve (see solve_matrix)
-    invert_after_ = solves_ > kInvertAfter ? 0 : kInvertAfter;
+    // costs, is inverted at once, without the LU (see solve_matrix); singular
+    // when a pivot vanishes against the largest (no allocation, unlike rcond())
+    const bool invert = solves_ > kInvertAfter;
     solves_ = 0;
+    if (invert) {
+      invert_after_ = 0;
+      Sinv_ = S_;
+      double pmin = 0.0, pmax = 0.0;
+      inverse_ready_ = invert_in_place(Sinv_, inverse_work_, pmin, pmax);
+      return inverse_ready_ && pmin > 1e-15 * pmax;
+    }
+    invert_after_ = kInvertAfter;
+    inverse_ready_ = false;
+    lu_->compute(S_);  // in place: S_ now holds L and U
+    const auto u = S_.diagonal().cwiseAbs();
     return u.minCoeff() > 1e-15 * u.maxCoeff();
   }
   // Ss_ has K's pattern plus the diagonal, in the same column order: walk both.
@@ -161,18 +173,20 @@ void SecondOrderSolver::solve_matrix(const double* r, double* x) {
     // long (generalized-alpha, ~110) is, and either way the cost is at most
     // twice that of the better choice made in hindsight (the rent-or-buy
     // argument). A matrix that follows one which served more than kInvertAfter
-    // solves is inverted on its first solve: an integrator that keeps its
-    // matrices long keeps doing so (that gives up the bound of two for a
-    // matrix that, unlike the one before it, serves few solves). The inverse's
-    // error, of order cond(S) eps, only slows a modified Newton iteration
-    // that already runs on an old matrix (Higham, Accuracy and Stability of
-    // Numerical Algorithms, 2nd ed. 2002, ch. 14).
+    // solves is inverted at once by Gauss-Jordan, without an LU (n^3 against
+    // 4 n^3 / 3 multiply-adds): an integrator that keeps its matrices long
+    // keeps doing so (that gives up the bound of two for a matrix that, unlike
+    // the one before it, serves few solves). The inverse's error, of order
+    // cond(S) eps, only slows a modified Newton iteration that already runs on
+    // an old matrix (Higham, Accuracy and Stability of Numerical Algorithms,
+    // 2nd ed. 2002, ch. 14).
     if (++solves_ <= invert_after_) {
       xq_.noalias() = lu_->permutationP() * rv;
       S_.triangularView<Eigen::UnitLower>().solveInPlace(xq_);
       S_.triangularView<Eigen::Upper>().solveInPlace(xq_);
     } else {
-      if (solves_ == invert_after_ + 1) {
+      if (!inverse_ready_) {
+        inverse_ready_ = true;
         // P as a matrix, column i holding a 1 in row indices(i) (an in-place
         // permutation product would allocate its bookkeeping)
         const auto& perm = lu_->permutationP().indices();

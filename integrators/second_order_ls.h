@@ -21,6 +21,7 @@
 
 #include <memory>
 
+#include "integrators/dense_inverse.h"
 #include "solver/types.h"
 
 struct _generic_SUNMatrix;
@@ -66,10 +67,14 @@ class SecondOrderSolver {
   double a_ = 0, b_ = 0, c_ = 0, d_ = 0, e_ = 0;  // coefficients of the next factor()
   double fa_ = 0, fb_ = 0, fd_ = 0, fe_ = 0;      // ... of the factorization held
   // dense path: S_ factorized in place (LU with partial pivoting); Sinv_ its
-  // inverse, formed on solve invert_after_ + 1 of the factorization
+  // inverse, formed from the factors on solve invert_after_ + 1 of the
+  // factorization, or at once by Gauss-Jordan (dense_inverse.h) in place of the
+  // LU when the matrix before served more than kInvertAfter solves
   Mat S_, Cd_, Sinv_;
   long solves_ = 0;        // on the factorization held
   long invert_after_ = 0;  // solves on it before it is inverted
+  bool inverse_ready_ = false;
+  DenseInverseWork inverse_work_;
   std::unique_ptr<Eigen::PartialPivLU<Eigen::Ref<Mat>>> lu_;
   // sparse path: KLU, refactorizing with the pivots of the last full factorization
   // while its reciprocal condition estimate stays above kKluRcond

@@ -4,6 +4,7 @@
 // reuse in IDA; refusal of problems it cannot take.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <random>
 
 #include "integrators/integrator.h"
@@ -184,4 +185,49 @@ TEST(SecondOrderSolver, RefusesProblemsWithAMassMatrix) {
     EXPECT_NE(msg.find("mass matrix"), std::string::npos) << msg;
     EXPECT_NE(msg.find("use klu"), std::string::npos) << msg;
   }
+}
+
+// Gauss-Jordan inverse (integrators/dense_inverse.h): A A^-1 = I to round-off
+// (Higham 2002, section 14.4: |A X - I| of order cond(A) eps for partial
+// pivoting), and the pivots are the LU's with partial pivoting (Golub & Van
+// Loan 2013, section 3.2), whose |diag U| Eigen's PartialPivLU gives.
+TEST(DenseInverse, InverseAndPivotsMatchTheLu) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  DenseInverseWork w;
+  for (int n : {1, 2, 7, 72}) {
+    for (double diag : {0.0, 3.0, 5e9}) {  // 5e9: pivots of 1/d ~ 2e-10 (a stiff S)
+      Mat A = Mat::NullaryExpr(n, n, [&] { return u(rng); });
+      A.diagonal().array() += diag;
+      if (n > 1) A.row(0).swap(A.row(n - 1));  // a zero-ish diagonal: pivoting needed
+      Mat X = A;
+      double pmin = 0.0, pmax = 0.0;
+      ASSERT_TRUE(invert_in_place(X, w, pmin, pmax)) << n;
+      const Eigen::PartialPivLU<Mat> lu(A);
+      const double cond = A.lpNorm<Eigen::Infinity>() * X.lpNorm<Eigen::Infinity>();
+      EXPECT_LT((A * X - Mat::Identity(n, n)).lpNorm<Eigen::Infinity>(), 50 * cond * 1e-16)
+          << "n = " << n << ", cond " << cond;
+      const auto d = lu.matrixLU().diagonal().cwiseAbs();
+      EXPECT_NEAR(pmin, d.minCoeff(), 1e-12 * d.maxCoeff()) << n;
+      EXPECT_NEAR(pmax, d.maxCoeff(), 1e-12 * d.maxCoeff()) << n;
+    }
+  }
+  // a permutation matrix: every step exchanges rows, the inverse is its transpose
+  Mat P = Mat::Zero(5, 5);
+  for (int i = 0; i < 5; ++i) P(i, (i + 2) % 5) = 1.0;
+  Mat X = P;
+  double pmin = 0.0, pmax = 0.0;
+  ASSERT_TRUE(invert_in_place(X, w, pmin, pmax));
+  EXPECT_EQ((X - P.transpose()).lpNorm<Eigen::Infinity>(), 0.0);
+}
+
+TEST(DenseInverse, ZeroPivotIsRefused) {
+  DenseInverseWork w;
+  Mat A = Mat::Identity(4, 4);
+  A(2, 2) = 0.0;  // column 2 zero below and on the diagonal after steps 0, 1
+  double pmin = 0.0, pmax = 0.0;
+  EXPECT_FALSE(invert_in_place(A, w, pmin, pmax));
+  Mat B = Mat::Identity(3, 3);
+  B(1, 1) = std::nan("");
+  EXPECT_FALSE(invert_in_place(B, w, pmin, pmax));
 }
