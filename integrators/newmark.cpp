@@ -38,6 +38,9 @@ void NewmarkIntegrator::setup() {
   K_.makeCompressed();
   C_ = K_;
   so_ = std::make_unique<SecondOrderSolver>(K_);
+  combined_ = (it_ == Iteration::EffectiveMass || it_ == Iteration::Newton) &&
+              s_.step_control != "adaptive";
+  so_->C().coeffs().setZero();  // (factorize_combination's S = K + 0 C)
   factored_ = false;
   have_jacobian_ = false;
   body_ = false;
@@ -68,6 +71,19 @@ void NewmarkIntegrator::factorize(const SpMat& K, const SpMat& C, double h) {
   h_factor_ = h;
   if (!factored_)
     throw RunError(name() + ": the iteration matrix is singular" + where(t_ + h, h, q1_, v1_));
+}
+
+void NewmarkIntegrator::factorize_combination(double t1, double h) {
+  const double ck = (1.0 - par_.alpha_f) * par_.beta * h * h;
+  const double cc = (1.0 - par_.alpha_f) * par_.gamma * h;
+  p_->force_jacobian_combination(t1, q1_.data(), v1_.data(), ck, cc, so_->K());
+  ++stats_.jacobian_evals;
+  have_jacobian_ = true;
+  factored_ = so_->factor_matrix(1.0, 0.0, 1.0 - par_.alpha_m);
+  ++stats_.linear_setups;
+  h_factor_ = h;
+  if (!factored_)
+    throw RunError(name() + ": the iteration matrix is singular" + where(t1, h, q1_, v1_));
 }
 
 bool NewmarkIntegrator::step(double t, double h) {
@@ -173,20 +189,28 @@ bool NewmarkIntegrator::iterate(double t, double h) {
 
     switch (it_) {
       case Iteration::Newton:
-        p_->force_jacobian(t1, q1_.data(), v1_.data(), K_, C_);
-        ++stats_.jacobian_evals;
-        factorize(K_, C_, h);
+        if (combined_) {
+          factorize_combination(t1, h);
+        } else {
+          p_->force_jacobian(t1, q1_.data(), v1_.data(), K_, C_);
+          ++stats_.jacobian_evals;
+          factorize(K_, C_, h);
+        }
         so_->solve_matrix(R_.data(), delta_.data());
         ++stats_.linear_solves;
         break;
       case Iteration::EffectiveMass:
-        if (refresh) {
-          p_->force_jacobian(t1, q1_.data(), v1_.data(), K_, C_);
-          ++stats_.jacobian_evals;
-          have_jacobian_ = true;
+        if (refresh || (combined_ && (!factored_ || std::abs(h / h_factor_ - 1.0) > 0.2))) {
+          if (combined_) {
+            factorize_combination(t1, h);
+          } else {
+            p_->force_jacobian(t1, q1_.data(), v1_.data(), K_, C_);
+            ++stats_.jacobian_evals;
+            have_jacobian_ = true;
+            factorize(K_, C_, h);
+          }
           fresh = true;
           refresh = false;
-          factorize(K_, C_, h);
         } else if (!factored_ || std::abs(h / h_factor_ - 1.0) > 0.2) {
           factorize(K_, C_, h);
         }

@@ -26,8 +26,12 @@
 //                   (Problem::force_jacobian), kept across iterations and steps
 //                   (modified Newton), refreshed when an iteration contracts by
 //                   less than a factor 2 with a matrix from an earlier step, and
-//                   refactorized when h changes by more than 20 %.
-//   newton          full Newton: K, C and S at every iterate.
+//                   refactorized when h changes by more than 20 % (with adaptive
+//                   steps from the K, C kept; otherwise S is formed from a new
+//                   Problem::force_jacobian_combination at the current iterate,
+//                   which needs half the products of K and C apart).
+//   newton          full Newton: K, C and S at every iterate (S alone without
+//                   adaptive steps).
 // Predictor: a extrapolated linearly from a_{n-1}, a_n (a_n on the first step
 // after a start, or when an element refuses the extrapolated state).
 // Convergence:
@@ -129,6 +133,10 @@ class NewmarkIntegrator : public FixedStepIntegrator {
   // S = (1 - am) I + (1 - af)(beta h^2 K + gamma h C), factorized by so_ (dense
   // LU up to n = 200, KLU above; integrators/second_order_ls.h)
   void factorize(const SpMat& K, const SpMat& C, double h);
+  /// Without adaptive steps the effective-mass and Newton iterations need S at
+  /// one h only: S from Problem::force_jacobian_combination at (t1, q1_, v1_),
+  /// factorized (a change of h takes a new one; combined_).
+  void factorize_combination(double t1, double h);
   bool fail(const std::string& why, double t1, double h, int iterations);
   std::string contraction_advice(double h) const;
   // weighted RMS norm (error-test weights) of the q, v changes of the last update
@@ -141,6 +149,7 @@ class NewmarkIntegrator : public FixedStepIntegrator {
   Vec kb_last_, cb_last_;  // body operator of the last factorization (fixed point)
   std::unique_ptr<SecondOrderSolver> so_;
   bool factored_ = false, have_jacobian_ = false, body_ = false;
+  bool combined_ = false;  // factorize_combination() in place of K_, C_ (see there)
   double h_factor_ = 0.0;
   Vec f_prev_;  // f one step before the current state (valid with has_history())
   Vec R_, delta_;

@@ -11,6 +11,18 @@ const SpMat& empty_pattern() {
 }
 }  // namespace
 
+void Problem::force_jacobian_combination(double t, const double* q, const double* v, double ck,
+                                         double cc, SpMat& S) {
+  if (comb_K_.nonZeros() != S.nonZeros()) {  // (allocates on the first call only)
+    comb_K_ = jacobian_pattern();
+    comb_C_ = comb_K_;
+  }
+  force_jacobian(t, q, v, comb_K_, comb_C_);
+  Eigen::Map<Vec>(S.valuePtr(), S.nonZeros()) =
+      ck * Eigen::Map<const Vec>(comb_K_.valuePtr(), S.nonZeros()) +
+      cc * Eigen::Map<const Vec>(comb_C_.valuePtr(), S.nonZeros());
+}
+
 void Problem::mass(double, const double*, SpMat&) {
   throw RunError("problem has no mass matrix (has_mass() is false)");
 }

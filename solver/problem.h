@@ -42,6 +42,12 @@ class Problem {
   /// K and C must have the pattern of jacobian_pattern(); only values are written.
   virtual void force_jacobian(double t, const double* q, const double* v, SpMat& K, SpMat& C) = 0;
   virtual const SpMat& jacobian_pattern() const = 0;
+  /// S = ck K + cc C at (t, q, v), values on jacobian_pattern(): for an
+  /// integrator that needs this one combination and keeps no K, C apart (the
+  /// Newmark family's iteration matrix at a fixed step). Counts as a Jacobian.
+  /// Default: force_jacobian() and the sum; a System forms the sum directly.
+  virtual void force_jacobian_combination(double t, const double* q, const double* v, double ck,
+                                          double cc, SpMat& S);
   /// First stop strictly after t (infinity if none).
   virtual double next_stop(double t) const {
     (void)t;
@@ -123,6 +129,9 @@ class Problem {
   virtual std::string describe_coordinate(int i) const;
 
   ProblemCounters counters;
+
+ private:
+  SpMat comb_K_, comb_C_;  // force_jacobian_combination()'s default: K, C
 };
 
 /// Sets the problem's current internal states to their initial values at

@@ -183,9 +183,18 @@ void System::update_lof(double t) {
       w.built = true;
     }
   }
+  // the marker axes of the bodies whose frame turned since they were formed
+  for (std::size_t b = 0; b < bodies.size(); ++b) {
+    BodyWork& w = bwork_[b];
+    w.axes_current = w.axes_built && lof_[b].R_GL == w.R_axes;
+    w.R_axes = lof_[b].R_GL;
+    w.axes_built = true;
+  }
   const auto& markers = model_.markers();
-  for (std::size_t m = 0; m < markers.size(); ++m)
-    if (!markers[m].on_ground()) axes_[m].noalias() = lof_[markers[m].body].R_GL * markers[m].R_LM;
+  for (std::size_t m = 0; m < markers.size(); ++m) {
+    const int b = markers[m].body;
+    if (b >= 0 && !bwork_[b].axes_current) axes_[m].noalias() = lof_[b].R_GL * markers[m].R_LM;
+  }
   t_lof_ = t;
 }
 
@@ -555,15 +564,27 @@ void System::marker_maps(int mi) {
   Pv.middleRows<3>(9) = Lm.bottomRows<3>();
 }
 
-void System::add_block(double* values, int bi, int bj, const Eigen::Ref<const Mat>& B) const {
+void System::add_block(double* values, int bi, int bj, const Eigen::Ref<const Mat>& B,
+                       double scale) const {
   const auto& starts = block_start_[bi * static_cast<int>(model_.bodies().size()) + bj];
   for (Eigen::Index c = 0; c < B.cols(); ++c) {
     double* col = values + starts[c];
-    for (Eigen::Index r = 0; r < B.rows(); ++r) col[r] += B(r, c);
+    for (Eigen::Index r = 0; r < B.rows(); ++r) col[r] += scale * B(r, c);
   }
 }
 
 void System::force_jacobian(double t, const double* q, const double* v, SpMat& K, SpMat& C) {
+  jacobian(t, q, v, nullptr, K, &C);
+}
+
+void System::force_jacobian_combination(double t, const double* q, const double* v, double ck,
+                                        double cc, SpMat& S) {
+  const double comb[2] = {ck, cc};
+  jacobian(t, q, v, comb, S, nullptr);
+}
+
+void System::jacobian(double t, const double* q, const double* v, const double* comb, SpMat& K,
+                      SpMat* C) {
   ++counters.jac_evals;
   // inertial elements: solve the accelerations first (their D is taken there)
   // (force_impl updates the markers; without inertial elements update them here)
@@ -571,9 +592,32 @@ void System::force_jacobian(double t, const double* q, const double* v, SpMat& K
     force_impl(t, q, v, scratch_f_.data());
   else
     update_markers(t, q, v);
-  body_operator(t, K, C);
+  if (comb) {  // ck KB + cc CB, from the body operator's parts
+    update_lof(t);
+    K.coeffs().setZero();
+    const auto& bodies = model_.bodies();
+    for (std::size_t b = 0; b < bodies.size(); ++b) {
+      const Body& B = bodies[b];
+      const int bi = static_cast<int>(b);
+      if (!bwork_[b].frame_free) {
+        add_block(K.valuePtr(), bi, bi, bwork_[b].KW, comb[0]);
+        add_block(K.valuePtr(), bi, bi, bwork_[b].G, comb[1]);
+      }
+      const auto& starts = block_start_[bi * static_cast<int>(bodies.size()) + bi];
+      for (int k = 0; k < B.n(); ++k)
+        K.valuePtr()[starts[k] + k] +=
+            comb[0] * B.data->eigenvalues[k] + comb[1] * B.data->damping[k];
+    }
+  } else {
+    body_operator(t, K, *C);
+  }
   const auto& markers = model_.markers();
-  for (auto& pw : pairs_) pw.Y.setZero();
+  for (auto& pw : pairs_) {
+    if (comb)
+      pw.Y.leftCols(pw.Y.cols() / 2).setZero();
+    else
+      pw.Y.setZero();
+  }
   const int nb = static_cast<int>(model_.bodies().size());
   for (std::size_t e = 0; e < ework_.size(); ++e) {
     if (is_timed_[e]) continue;  // loads of time alone: D = 0
@@ -617,22 +661,32 @@ void System::force_jacobian(double t, const double* q, const double* v, SpMat& K
         const auto Bj = bstack_[bj].middleRows<6>(mrow_[ids[j]]);
         const Eigen::Index nj = Bj.cols();
         const int r = pw.crow[static_cast<std::size_t>(ids[i])];
-        pw.Y.block(r, 0, 6, nj).noalias() += LK * Bj;
-        pw.Y.block(r, nj, 6, nj).noalias() += LC * Bj;
+        if (comb) {
+          const Mat6 L = comb[0] * LK + comb[1] * LC;
+          pw.Y.block(r, 0, 6, nj).noalias() += L * Bj;
+        } else {
+          pw.Y.block(r, 0, 6, nj).noalias() += LK * Bj;
+          pw.Y.block(r, nj, 6, nj).noalias() += LC * Bj;
+        }
       }
     }
   }
   // f = ... - Q  =>  [K C] -= [Bu; Bt]_i^T [YK YC], over the loaded rows
   for (auto& pw : pairs_) {
     if (pw.Y.rows() == 0) continue;  // coupled by elements of time alone only: D = 0
-    pw.blk.noalias() = -pw.Bc.transpose() * pw.Y;
     const Eigen::Index nj = pw.Y.cols() / 2;
+    if (comb) {  // (the left half of Y holds the combination)
+      pw.blk.leftCols(nj).noalias() = -pw.Bc.transpose() * pw.Y.leftCols(nj);
+      add_block(K.valuePtr(), pw.bi, pw.bj, pw.blk.leftCols(nj));
+      continue;
+    }
+    pw.blk.noalias() = -pw.Bc.transpose() * pw.Y;
     add_block(K.valuePtr(), pw.bi, pw.bj, pw.blk.leftCols(nj));
-    add_block(C.valuePtr(), pw.bi, pw.bj, pw.blk.rightCols(nj));
+    add_block(C->valuePtr(), pw.bi, pw.bj, pw.blk.rightCols(nj));
   }
-  if (rank_ > 0) {
+  if (rank_ > 0) {  // M^-1 (ck K + cc C) = ck M^-1 K + cc M^-1 C
     apply_inverse_mass(K);
-    apply_inverse_mass(C);
+    if (!comb) apply_inverse_mass(*C);
   }
 }
 

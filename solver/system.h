@@ -36,6 +36,9 @@ class System : public Problem {
   void initial_state(Vec& q, Vec& v) const override;
   void force(double t, const double* q, const double* v, double* f) override;
   void force_jacobian(double t, const double* q, const double* v, SpMat& K, SpMat& C) override;
+  /// ck K + cc C with half the products of force_jacobian() (one set of pair blocks).
+  void force_jacobian_combination(double t, const double* q, const double* v, double ck, double cc,
+                                  SpMat& S) override;
   const SpMat& jacobian_pattern() const override { return pattern_; }
   void body_operator(double t, SpMat& KB, SpMat& CB) override;
   double next_stop(double t) const override;
@@ -101,6 +104,8 @@ class System : public Problem {
     Mat3 W, Om;  // frame matrices KW, G were last built for
     bool built = false;
     bool frame_free = false;  // KW = G = 0 (the products are skipped)
+    Mat3 R_axes;              // the frame's rotation the marker axes axes_ were formed at
+    bool axes_built = false, axes_current = false;
   };
   void update_lof(double t);
   void force_impl(double t, const double* q, const double* v, double* f, bool reads_only = false);
@@ -160,8 +165,9 @@ class System : public Problem {
   void apply_inverse_mass(SpMat& A);
   static void add_rotation_correction(const Body& B, const Vec3& w_L, const Vec3& al_L, Mat& KW);
   void marker_maps(int marker);
-  /// Adds the dense block B (rows of body bi, columns of body bj) into values.
-  void add_block(double* values, int bi, int bj, const Eigen::Ref<const Mat>& B) const;
+  /// Adds scale B (B dense: rows of body bi, columns of body bj) into values.
+  void add_block(double* values, int bi, int bj, const Eigen::Ref<const Mat>& B,
+                 double scale = 1.0) const;
   void reanchor(int body, double t, double* q, double* v);
   /// Offsets of the element internal states and the patterns of their Jacobians.
   void setup_internal();
@@ -238,6 +244,9 @@ class System : public Problem {
   /// crow, Y, Bc of every pair from the elements that are not of time alone
   /// (after build_row_sets()).
   void build_pair_rows();
+  /// force_jacobian() (comb null: K and C) or, with comb = (ck, cc), ck K + cc C
+  /// into K alone (C unused).
+  void jacobian(double t, const double* q, const double* v, const double* comb, SpMat& K, SpMat* C);
   std::vector<PairWork> pairs_;
   std::vector<int> pair_index_;  // [bi * nb + bj] -> index in pairs_, -1 if none
   // block_start_[bi * nb + bj][c]: value index of the first row of body bi in

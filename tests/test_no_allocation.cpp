@@ -66,6 +66,7 @@ TEST(NoAllocation, ResidualAndJacobianAfterWarmUp) {
   // warm up
   sys.force(0.1, q.data(), v.data(), f.data());
   sys.force_jacobian(0.1, q.data(), v.data(), K, C);
+  sys.force_jacobian_combination(0.1, q.data(), v.data(), 1e-10, 1e-5, K);
   fo.residual(0.1, y.data(), yd.data(), F.data());
   fo.residual_jacobian(0.1, y.data(), 2.0, Jr);
   fo.rhs(0.1, y.data(), F.data());
@@ -76,6 +77,7 @@ TEST(NoAllocation, ResidualAndJacobianAfterWarmUp) {
     const double t = 0.2 + 0.01 * k;
     sys.force(t, q.data(), v.data(), f.data());
     sys.force_jacobian(t, q.data(), v.data(), K, C);
+    sys.force_jacobian_combination(t, q.data(), v.data(), 1e-10, 1e-5, K);
     fo.residual(t, y.data(), yd.data(), F.data());
     fo.residual_jacobian(t, y.data(), 1.5, Jr);
     fo.rhs(t, y.data(), F.data());

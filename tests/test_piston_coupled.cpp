@@ -333,3 +333,24 @@ TEST(CoupledPiston, HeavyFlywheelTendsToPrescribedLoads) {
   // Measured 2.4e-9 relative; bound 1e-6.
   EXPECT_LT(worst, 1e-6 * scale);
 }
+
+// With an inertial element the Jacobian is M^-1 K, M^-1 C (solver/system.h);
+// force_jacobian_combination gives their combination, M^-1 (ck K + cc C).
+TEST(CoupledPiston, JacobianCombinationIsTheSumOfKAndC) {
+  Rig r = rig(0.5, kOmega, gas_table(), 0.02);
+  System sys(*r.model);
+  ASSERT_GT(sys.inertia_rank(), 0);
+  Vec q, v;
+  sys.initial_state(q, v);
+  q.array() += 0.3;
+  v.array() += 5.0;
+  SpMat K = sys.jacobian_pattern(), C = K, S = K;
+  const double t = 0.004, ck = 2e-11, cc = 3e-6;
+  sys.force_jacobian(t, q.data(), v.data(), K, C);
+  sys.force_jacobian_combination(t, q.data(), v.data(), ck, cc, S);
+  const Eigen::Map<const Vec> k(K.valuePtr(), K.nonZeros()), c(C.valuePtr(), C.nonZeros()),
+      s(S.valuePtr(), S.nonZeros());
+  const Vec sum = ck * k + cc * c;
+  EXPECT_GT(sum.lpNorm<Eigen::Infinity>(), 0.0);
+  EXPECT_LE((s - sum).lpNorm<Eigen::Infinity>(), 1e-13 * sum.lpNorm<Eigen::Infinity>());
+}

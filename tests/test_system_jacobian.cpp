@@ -5,6 +5,7 @@
 
 #include "elements/spring_damper.h"
 #include "fd_check.h"
+#include "io/scene.h"
 #include "random_body.h"
 #include "solver/system.h"
 
@@ -74,4 +75,31 @@ TEST(SpringDamper, AnalyticDerivativesMatchFallback) {
   EXPECT_LT((l[0].F + l[1].F).norm(), 1e-9);
   const Vec3 Mo = l[0].M + l[1].M + m[0].p.cross(l[0].F) + m[1].p.cross(l[1].F);
   EXPECT_LT(Mo.norm(), 1e-9 * l[1].F.norm());
+}
+
+// Problem::force_jacobian_combination: ck K + cc C formed directly (System) and
+// by the default (force_jacobian, then the sum) equal the sum of force_jacobian's
+// K and C, for frames that spin and that stay, and for the paper's engine.
+TEST(SystemJacobian, CombinationEqualsTheSumOfKAndC) {
+  const std::string engine = std::string(EVAS_SOURCE_DIR) + "/validation/engine/engine.yaml";
+  Scene scene = read_scene(engine);
+  auto model = coupled_model();
+  for (Model* m : {model.get(), scene.model.get()}) {
+    System sys(*m);
+    const int n = sys.size();
+    Vec q0, v0;
+    sys.initial_state(q0, v0);
+    const Vec q = q0 + Vec::Random(n) * 1e-6, v = v0 + Vec::Random(n) * 1e-2;
+    SpMat K = sys.jacobian_pattern(), C = K, S = K;
+    const double t = 0.0123, ck = 3.7e-11, cc = 4.6e-6;  // (1 - af) beta h^2, (1 - af) gamma h
+    sys.force_jacobian(t, q.data(), v.data(), K, C);
+    const Eigen::Map<const Vec> k(K.valuePtr(), K.nonZeros()), c(C.valuePtr(), C.nonZeros());
+    const Vec sum = ck * k + cc * c;
+    sys.force_jacobian_combination(t, q.data(), v.data(), ck, cc, S);
+    const Eigen::Map<const Vec> s(S.valuePtr(), S.nonZeros());
+    EXPECT_LE((s - sum).lpNorm<Eigen::Infinity>(), 1e-13 * sum.lpNorm<Eigen::Infinity>()) << n;
+    sys.Problem::force_jacobian_combination(t, q.data(), v.data(), ck, cc, S);  // the default
+    EXPECT_LE((s - sum).lpNorm<Eigen::Infinity>(), 1e-13 * sum.lpNorm<Eigen::Infinity>()) << n;
+    EXPECT_GT(sum.lpNorm<Eigen::Infinity>(), 0.0);
+  }
 }
