@@ -13,7 +13,10 @@ constexpr double kRad = M_PI / 180.0;
 // Slider-crank kinematics.
 
 void SliderCrank::eval(double theta, double& x, double& dx, double& ddx) const {
-  const double s = std::sin(theta), c = std::cos(theta);
+  eval_sc(std::sin(theta), std::cos(theta), x, dx, ddx);
+}
+
+void SliderCrank::eval_sc(double s, double c, double& x, double& dx, double& ddx) const {
   const double Lc = std::sqrt(L * L - R * R * s * s);  // L cos phi
   x = R * c + Lc;
   dx = -R * s - R * R * s * c / Lc;
@@ -109,18 +112,19 @@ PistonConrod::State PistonConrod::state_at(double theta, double thd, double thdd
   s.thd = thd;
   s.thdd = thdd;
   double x, dx, ddx;
-  sc_.eval(theta, x, dx, ddx);
+  const double sn = std::sin(theta), cs = std::cos(theta);  // (once: four uses below)
+  sc_.eval_sc(sn, cs, x, dx, ddx);
   s.x = x;
   s.xd = dx * thd;
   const double lam = sc_.R / sc_.L;
   // eq2 (prescribed only): the paper's constant-speed two-term series (A2 ~ lambda), used
   // consistently in the inertia, rod and side forces so that the element stays in equilibrium.
-  s.xdd = p_.eq2_side_force ? -sc_.R * thd * thd * (std::cos(theta) + lam * std::cos(2 * theta))
+  s.xdd = p_.eq2_side_force ? -sc_.R * thd * thd * (cs + lam * std::cos(2 * theta))
                             : ddx * thd * thd + dx * thdd;
   const double dxdd = p_.eq2_side_force ? 0.0 : dx;  // d xdd / d thdd
   s.p = gas_ ? (*gas_)(theta)-p_.crankcase_pressure : 0.0;
   s.Fc = s.p * area_;
-  s.sin_phi = lam * std::sin(theta);
+  s.sin_phi = lam * sn;
   s.cos_phi = std::sqrt(1.0 - s.sin_phi * s.sin_phi);
   const double tphi = s.sin_phi / s.cos_phi;
   const double m = p_.piston_mass + p_.rec_mass;
@@ -138,8 +142,8 @@ PistonConrod::State PistonConrod::state_at(double theta, double thd, double thdd
   s.dFf = -sg * p_.friction_coefficient * (B >= 0 ? 1.0 : -1.0) * s.dN;
   s.dFr = (m * dxdd - s.dFf) / s.cos_phi;
   const Vec3 u = s.cos_phi * ec_ - s.sin_phi * es_;
-  const Vec3 er = std::cos(theta) * ec_ + std::sin(theta) * es_;
-  const Vec3 et = -std::sin(theta) * ec_ + std::cos(theta) * es_;
+  const Vec3 er = cs * ec_ + sn * es_;
+  const Vec3 et = -sn * ec_ + cs * es_;
   s.F_pin_B = -s.Fr * u + p_.rot_mass * sc_.R * (thd * thd * er - thdd * et);
   return s;
 }

@@ -57,6 +57,8 @@ struct SliderCrank {
   double L = 0.0;  ///< conrod length [m]
   /// Pin height x_p and its first and second derivatives w.r.t. theta.
   void eval(double theta, double& x, double& dx, double& ddx) const;
+  /// The same from sin(theta), cos(theta).
+  void eval_sc(double s, double c, double& x, double& dx, double& ddx) const;
   /// Exact piston acceleration at constant speed w (references.md s.2 closed form).
   double acceleration(double theta, double w) const;
   /// Fourier series of the acceleration truncated after cos(2k theta), k <= kmax (1..3):

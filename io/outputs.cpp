@@ -98,7 +98,12 @@ OutputSet::OutputSet(const OutputSpec& spec, System& system, double t_start, dou
       }
     }
     sources_.push_back(src);
+    if (req.kind == ChannelRequest::Kind::Marker) markers_.push_back(req.index);
+    if (req.kind == ChannelRequest::Kind::Element)
+      for (int mk : model.elements()[req.index]->markers()) markers_.push_back(mk);
   }
+  std::sort(markers_.begin(), markers_.end());
+  markers_.erase(std::unique(markers_.begin(), markers_.end()), markers_.end());
   const int m = sys_.constraint_count();
   if (m > 0) {
     constraint_first_ = static_cast<int>(channels_.size());
@@ -122,7 +127,9 @@ void OutputSet::add_multiplier_channels() {
 void OutputSet::values(double t, const double* q, const double* v, double* out,
                        const double* lambda) {
   Model& model = sys_.model();
-  sys_.observe(t, q, v);  // full accelerations: inertial elements report the solved ones
+  // the channels' markers (with inertial elements every marker and the full
+  // accelerations: those elements report the solved ones)
+  sys_.observe(t, q, v, markers_);
   if (crank_body_ >= 0) out[0] = model.bodies()[crank_body_].lof.spin_angle(t) * kDeg;
   for (const Source& src : sources_) {
     double* o = out + src.first;

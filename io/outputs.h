@@ -52,6 +52,7 @@ class OutputSet {
   System& sys_;
   std::vector<Channel> channels_;
   std::vector<Source> sources_;
+  std::vector<int> markers_;  // the markers whose motion the channels read (ascending)
   std::vector<double> times_;
   int crank_body_ = -1;                            // >= 0: channel 0 is the crank angle
   int constraint_first_ = -1, lambda_first_ = -1;  // >= 0: first g / lambda channel

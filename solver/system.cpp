@@ -528,6 +528,42 @@ void System::apply_inverse_mass(SpMat& A) {
     for (int k = outer[c]; k < outer[c + 1]; ++k) val[k] += U_.row(inner[k]).dot(WtA_.col(c));
 }
 
+void System::observe(double t, const double* q, const double* v, const std::vector<int>& markers) {
+  if (rank_ > 0) {
+    observe(t, q, v);
+    return;
+  }
+  const auto& all = model_.markers();
+  if (oset_.empty() || markers != observed_) {  // (set-up: allocates when the list changes)
+    observed_ = markers;
+    observed_mask_.assign(all.size(), 0);
+    std::vector<unsigned> parts(all.size(), 0u);
+    for (int m : markers) {
+      observed_mask_.at(static_cast<std::size_t>(m)) = 1;
+      parts[static_cast<std::size_t>(m)] = Element::kReadsTranslation | Element::kReadsRotation;
+    }
+    oset_ = row_sets(parts);
+  }
+  update_lof(t);
+  const auto& bodies = model_.bodies();
+  for (std::size_t b = 0; b < bodies.size(); ++b) {
+    RowSet& o = oset_[b];
+    if (o.rows.empty()) continue;
+    Eigen::Map<const Vec> qb(q + bodies[b].offset, bodies[b].n()),
+        vb(v + bodies[b].offset, bodies[b].n());
+    o.y.noalias() = o.stack * qb;
+    o.z.noalias() = o.stack * vb;
+  }
+  for (std::size_t m = 0; m < all.size(); ++m) {
+    const int b = all[m].body;
+    if (b < 0 || !observed_mask_[m]) continue;  // ground: constant, set by the constructor
+    const RowSet& o = oset_[b];
+    const int r = o.tpos[m];
+    marker_motion(all[m], lof_[b], axes_[m], o.y.segment<3>(r), o.y.segment<3>(r + 3),
+                  o.z.segment<3>(r), o.z.segment<3>(r + 3), motion_[m]);
+  }
+}
+
 void System::observe(double t, const double* q, const double* v) {
   if (rank_ == 0) {  // no element reads accelerations: the motion is enough
     update_markers(t, q, v);

@@ -82,6 +82,10 @@ class System : public Problem {
   /// Marker motions for outputs; with inertial elements also the full accelerations
   /// (qdd = -f solved), else the accelerations at qdd = 0.
   void observe(double t, const double* q, const double* v);
+  /// The same for the motions of `markers` alone (an output set names those its
+  /// channels read); the others are then not current. With inertial elements,
+  /// every marker as observe().
+  void observe(double t, const double* q, const double* v, const std::vector<int>& markers);
   /// Total rank of the inertial elements (0: M = I).
   int inertia_rank() const { return rank_; }
   const MarkerMotion& motion(int marker) const { return motion_[marker]; }
@@ -218,6 +222,9 @@ class System : public Problem {
   // markers none reads).
   std::vector<RowSet> rset_;
   std::vector<char> unread_;
+  std::vector<RowSet> oset_;         // observe(..., markers): the rows of those markers
+  std::vector<int> observed_;        // ... and the markers they were formed for
+  std::vector<char> observed_mask_;  // per marker: one of them
   bool reads_only_ = true;
   // Elements whose loads depend on t alone (not state_dependent(), no inertia, no
   // internal states): their generalised loads ftime_ at t_time_, computed once per

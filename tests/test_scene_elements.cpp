@@ -253,3 +253,32 @@ TEST(SceneElements, ResidualFromTheReadRowsEqualsTheFullOne) {
     }
   }
 }
+
+// System::observe for a list of markers (what an output set's channels read)
+// gives those markers the motion that observing every marker gives them.
+TEST(SceneElements, ObservedMarkersMatchTheFullObservation) {
+  const std::string engine = std::string(EVAS_SOURCE_DIR) + "/validation/engine/engine.yaml";
+  Scene scene = read_scene(engine);
+  System sys(*scene.model);
+  const int n = sys.size();
+  Vec q, v;
+  sys.initial_state(q, v);
+  q += Vec::Random(n) * 2e-6;
+  v += Vec::Random(n) * 2e-2;
+  const std::vector<int> some = {0, 5, 12, 16, 22, 24};  // j1, b1, p3, l3, fw, m1
+  const double t = 0.0137;
+  sys.observe(t, q.data(), v.data());
+  std::vector<MarkerMotion> full;
+  for (int m : some) full.push_back(sys.motion(m));
+  sys.observe(t + 1e-3, q.data(), v.data());  // (another state in between)
+  sys.observe(t, q.data(), v.data(), some);
+  for (std::size_t i = 0; i < some.size(); ++i) {
+    const MarkerMotion& a = full[i];
+    const MarkerMotion& b = sys.motion(some[i]);
+    EXPECT_LE((a.p - b.p).norm(), 1e-15 * a.p.norm() + 1e-18) << some[i];
+    EXPECT_LE((a.v - b.v).norm(), 1e-14 * a.v.norm() + 1e-18) << some[i];
+    EXPECT_LE((a.psi - b.psi).norm(), 1e-14 * a.psi.norm() + 1e-18) << some[i];
+    EXPECT_LE((a.w - b.w).norm(), 1e-14 * a.w.norm() + 1e-18) << some[i];
+    EXPECT_EQ(a.R, b.R) << some[i];
+  }
+}
