@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#define EVAS_PLUGIN_ABI_VERSION 1
+#define EVAS_PLUGIN_ABI_VERSION 2  // 2: Problem::force_jacobian_combination (the vtable changed)
 /// Declares a plug-in's entry point exported whatever the visibility preset:
 ///     EVAS_PLUGIN_EXPORT int evas_plugin_init(int abi_version) { ... }
 #define EVAS_PLUGIN_EXPORT extern "C" __attribute__((visibility("default")))

@@ -545,15 +545,7 @@ void System::observe(double t, const double* q, const double* v, const std::vect
     oset_ = row_sets(parts);
   }
   update_lof(t);
-  const auto& bodies = model_.bodies();
-  for (std::size_t b = 0; b < bodies.size(); ++b) {
-    RowSet& o = oset_[b];
-    if (o.rows.empty()) continue;
-    Eigen::Map<const Vec> qb(q + bodies[b].offset, bodies[b].n()),
-        vb(v + bodies[b].offset, bodies[b].n());
-    o.y.noalias() = o.stack * qb;
-    o.z.noalias() = o.stack * vb;
-  }
+  row_products(oset_, q, v);
   for (std::size_t m = 0; m < all.size(); ++m) {
     const int b = all[m].body;
     if (b < 0 || !observed_mask_[m]) continue;  // ground: constant, set by the constructor

@@ -138,6 +138,8 @@ class System : public Problem {
   /// Per body the rows of `parts` (per marker: bit 1 the translation or force
   /// rows, bit 2 the rotation or moment rows).
   std::vector<RowSet> row_sets(const std::vector<unsigned>& parts) const;
+  /// y = stack q_b, z = stack v_b of every body's set in `sets` that has rows.
+  void row_products(std::vector<RowSet>& sets, const double* q, const double* v) const;
   /// f = the bodies' own terms (Eq. 1 without the element loads) + ftime.
   void body_terms(const double* q, const double* v, const Vec& ftime, double* f) const;
 

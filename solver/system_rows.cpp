@@ -75,17 +75,22 @@ void System::time_loads(double t) {
   t_time_ = t;
 }
 
-void System::force_rows(double t, const double* q, const double* v, double* f) {
-  update_lof(t);
+void System::row_products(std::vector<RowSet>& sets, const double* q, const double* v) const {
   const auto& bodies = model_.bodies();
   for (std::size_t b = 0; b < bodies.size(); ++b) {
-    RowSet& r = rset_[b];
+    RowSet& r = sets[b];
     if (r.rows.empty()) continue;
     Eigen::Map<const Vec> qb(q + bodies[b].offset, bodies[b].n()),
         vb(v + bodies[b].offset, bodies[b].n());
     r.y.noalias() = r.stack * qb;
     r.z.noalias() = r.stack * vb;
   }
+}
+
+void System::force_rows(double t, const double* q, const double* v, double* f) {
+  update_lof(t);
+  row_products(rset_, q, v);
+  const auto& bodies = model_.bodies();
   if (!timed_.empty() && t != t_time_) time_loads(t);
   body_terms(q, v, ftime_, f);
   for (RowSet& s : lset_) s.y.setZero();
