@@ -28,6 +28,7 @@
 #include <iomanip>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "integrators/second_order_ls.h"
@@ -81,6 +82,25 @@ struct UnitCosts {
   double so_factor = 0, so_solve = 0;          // second-order solver (n x n) [s]
 };
 
+// The minima of f and g per call over windows that alternate between them, so
+// that a drift of the shared machine's speed falls on both (for a difference).
+template <class F, class G>
+std::pair<double, double> per_call_pair(F&& f, G&& g, int calls) {
+  f();  // warm-up
+  g();
+  double bf = 1e300, bg = 1e300;
+  for (int r = 0; r < 9; ++r) {
+    auto t0 = std::chrono::steady_clock::now();
+    for (int k = 0; k < calls; ++k) f();
+    auto t1 = std::chrono::steady_clock::now();
+    for (int k = 0; k < calls; ++k) g();
+    auto t2 = std::chrono::steady_clock::now();
+    bf = std::min(bf, std::chrono::duration<double>(t1 - t0).count());
+    bg = std::min(bg, std::chrono::duration<double>(t2 - t1).count());
+  }
+  return {bf / calls, bg / calls};
+}
+
 template <class F>
 double per_call(F&& f, int calls) {
   f();  // warm-up
@@ -109,8 +129,11 @@ inline UnitCosts unit_costs(const study::SceneSource& src) {
   const double cj = 2e5;  // 1/h at the engine's typical step of 5 us
   UnitCosts u;
   u.residual = per_call([&] { sys.force(0.0, q.data(), v.data(), f.data()); }, 2000);
-  u.jacobian = per_call([&] { sys.force_jacobian(0.0, q.data(), v.data(), K, C); }, 300);
-  u.assemble = per_call([&] { form.residual_jacobian(0.0, y.data(), cj, J); }, 300) - u.jacobian;
+  const auto [jac, jac_and_assembly] =
+      per_call_pair([&] { sys.force_jacobian(0.0, q.data(), v.data(), K, C); },
+                    [&] { form.residual_jacobian(0.0, y.data(), cj, J); }, 300);
+  u.jacobian = jac;
+  u.assemble = jac_and_assembly - jac;
   klu_common common;
   klu_defaults(&common);
   int* Ap = J.outerIndexPtr();
@@ -249,7 +272,7 @@ inline std::string engine_table(const std::string& path) {
       s.step_control = r.control;  // substep: failed steps as sub-steps
       const bool so = r.solver == "second-order";
       const bool ida = r.name == "ida";
-      const study::RunData d = study::run_case_repeated(c.src, s, channels, 2);
+      const study::RunData d = study::run_case_repeated(c.src, s, channels, 3);
       if (d.status != "completed") throw RunError(c.label + ": " + d.message);
       const IntegratorStats& st = d.stats;
       const double span = info.t_end - info.t_start;
