@@ -1,8 +1,9 @@
 // In-place inverse of a dense square matrix by Gauss-Jordan elimination with
-// partial pivoting (Golub & Van Loan, Matrix Computations, 4th ed. 2013,
-// section 3.2 and problem P3.2.6; Higham, Accuracy and Stability of Numerical
-// Algorithms, 2nd ed. 2002, section 14.4): n^3 multiply-adds, against n^3/3 +
-// n^3 for an LU and the inverse formed from its factors. The pivots are those
+// partial pivoting (Higham, Accuracy and Stability of Numerical Algorithms,
+// 2nd ed. 2002, section 14.4; the elimination with partial pivoting: Golub &
+// Van Loan, Matrix Computations, 4th ed. 2013, section 3.4): n^3
+// multiply-adds, against n^3/3 + n^3 for an LU and the inverse formed from
+// its factors. The pivots are those
 // of the LU with partial pivoting (the elimination above the diagonal does not
 // change the rows below it), so the same singularity test applies.
 #pragma once

@@ -620,22 +620,10 @@ void System::jacobian(double t, const double* q, const double* v, const double* 
     force_impl(t, q, v, scratch_f_.data());
   else
     update_markers(t, q, v);
-  if (comb) {  // ck KB + cc CB, from the body operator's parts
+  if (comb) {  // ck KB + cc CB
     update_lof(t);
     K.coeffs().setZero();
-    const auto& bodies = model_.bodies();
-    for (std::size_t b = 0; b < bodies.size(); ++b) {
-      const Body& B = bodies[b];
-      const int bi = static_cast<int>(b);
-      if (!bwork_[b].frame_free) {
-        add_block(K.valuePtr(), bi, bi, bwork_[b].KW, comb[0]);
-        add_block(K.valuePtr(), bi, bi, bwork_[b].G, comb[1]);
-      }
-      const auto& starts = block_start_[bi * static_cast<int>(bodies.size()) + bi];
-      for (int k = 0; k < B.n(); ++k)
-        K.valuePtr()[starts[k] + k] +=
-            comb[0] * B.data->eigenvalues[k] + comb[1] * B.data->damping[k];
-    }
+    add_body_terms(K.valuePtr(), comb[0], comb[1]);
   } else {
     body_operator(t, K, *C);
   }
@@ -722,17 +710,20 @@ void System::body_operator(double t, SpMat& KB, SpMat& CB) {
   update_lof(t);
   KB.coeffs().setZero();
   CB.coeffs().setZero();
+  add_body_terms(KB.valuePtr(), 1.0, 0.0);
+  add_body_terms(CB.valuePtr(), 0.0, 1.0);
+}
+
+void System::add_body_terms(double* values, double ck, double cc) const {
   const auto& bodies = model_.bodies();
   for (std::size_t b = 0; b < bodies.size(); ++b) {
     const Body& B = bodies[b];
     const int bi = static_cast<int>(b);
-    add_block(KB.valuePtr(), bi, bi, bwork_[b].KW);
-    add_block(CB.valuePtr(), bi, bi, bwork_[b].G);
+    if (ck != 0.0) add_block(values, bi, bi, bwork_[b].KW, ck);
+    if (cc != 0.0) add_block(values, bi, bi, bwork_[b].G, cc);
     const auto& starts = block_start_[bi * static_cast<int>(bodies.size()) + bi];
-    for (int k = 0; k < B.n(); ++k) {
-      KB.valuePtr()[starts[k] + k] += B.data->eigenvalues[k];
-      CB.valuePtr()[starts[k] + k] += B.data->damping[k];
-    }
+    for (int k = 0; k < B.n(); ++k)
+      values[starts[k] + k] += ck * B.data->eigenvalues[k] + cc * B.data->damping[k];
   }
 }
 

@@ -125,10 +125,10 @@ class System : public Problem {
   void load_element(int e, double t);
   /// Rows of a body's stack (the translation and/or rotation rows of some
   /// markers), stacked, with work vectors y, z of their size; all: every row
-  /// (then the stack itself is used and the rest is empty).
+  /// (update_markers then uses the body's stack and bq_, bv_ themselves).
   struct RowSet {
     std::vector<int> rows;
-    Mat stack;   // those rows of the body's stack (all of them when `all`)
+    Mat stack;   // those rows of the body's stack
     Mat stackT;  // stack^T, stored: the loads back by a column-major product
     Vec y, z;
     std::vector<int> tpos, rpos;  // per marker of the body: first translation /
@@ -171,6 +171,8 @@ class System : public Problem {
   void apply_inverse_mass(SpMat& A);
   static void add_rotation_correction(const Body& B, const Vec3& w_L, const Vec3& al_L, Mat& KW);
   void marker_maps(int marker);
+  /// values += ck (Lambda + KW) + cc (C + G) on each body's diagonal block.
+  void add_body_terms(double* values, double ck, double cc) const;
   /// Adds scale B (B dense: rows of body bi, columns of body bj) into values.
   void add_block(double* values, int bi, int bj, const Eigen::Ref<const Mat>& B,
                  double scale = 1.0) const;

@@ -190,7 +190,7 @@ TEST(SecondOrderSolver, RefusesProblemsWithAMassMatrix) {
 // Gauss-Jordan inverse (integrators/dense_inverse.h): A A^-1 = I to round-off
 // (Higham 2002, section 14.4: |A X - I| of order cond(A) eps for partial
 // pivoting), and the pivots are the LU's with partial pivoting (Golub & Van
-// Loan 2013, section 3.2), whose |diag U| Eigen's PartialPivLU gives.
+// Loan 2013, section 3.4), whose |diag U| Eigen's PartialPivLU gives.
 TEST(DenseInverse, InverseAndPivotsMatchTheLu) {
   std::mt19937 rng(11);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
