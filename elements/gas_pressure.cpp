@@ -226,6 +226,12 @@ PressureTable PressureTable::read(const std::string& path, double max_gap_deg) {
 }
 
 void PressureTable::build() {
+  // A table of equal spacing (to 1e-9 of a step) is entered by division, not
+  // by bisection (operator(); the same interval either way).
+  const std::size_t m = angle_.size();
+  step_ = m >= 2 ? (angle_[m - 1] - angle_[0]) / static_cast<double>(m - 1) : 0.0;
+  for (std::size_t k = 1; k < m && step_ > 0.0; ++k)
+    if (std::abs(angle_[k] - angle_[k - 1] - step_) > 1e-9 * step_) step_ = 0.0;
   // Periodic PCHIP slopes (Fritsch-Butland weighted harmonic mean; zero at
   // local extrema and where neighbouring secants change sign).
   const std::size_t n = angle_.size();
@@ -248,8 +254,16 @@ double PressureTable::operator()(double theta, double* dp_dtheta) const {
   double x = std::fmod(theta * kDegPerRad - angle_[0], kPeriodDeg);
   if (x < 0.0) x += kPeriodDeg;
   x += angle_[0];
-  std::size_t k = std::upper_bound(angle_.begin(), angle_.end(), x) - angle_.begin();
-  k = k == 0 ? 0 : k - 1;
+  std::size_t k;
+  if (step_ > 0.0) {  // uniform table: the interval from the angle, then made exact
+    const double g = std::floor((x - angle_[0]) / step_);
+    k = g <= 0.0 ? 0 : std::min(static_cast<std::size_t>(g), n - 1);
+    while (k + 1 < n && angle_[k + 1] <= x) ++k;
+    while (k > 0 && angle_[k] > x) --k;
+  } else {
+    k = std::upper_bound(angle_.begin(), angle_.end(), x) - angle_.begin();
+    k = k == 0 ? 0 : k - 1;
+  }
   const std::size_t k1 = (k + 1) % n;
   const double x0 = angle_[k];
   const double h = k + 1 < n ? angle_[k + 1] - x0 : angle_[0] + kPeriodDeg - x0;

@@ -66,6 +66,7 @@ class PressureTable {
  private:
   void build();
   std::vector<double> angle_, p_, slope_;  // slope_: dp/dangle [Pa/deg] at the knots
+  double step_ = 0.0;  // the angle step of a uniform table [deg] (0: not uniform)
 };
 
 /// Synthetic direct-injection diesel cycle (references.md section 3): single

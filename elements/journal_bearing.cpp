@@ -150,13 +150,16 @@ FilmForce JournalBearing::hydro(const V2& e, const V2& ed, double om, double wei
     const V2 Wl(a1.dot(W), a2.dot(W));
     // limits delta = dW -+ pi/2, dW the direction of W: cos and sin of both from
     // W itself, and psi(hi) - psi(lo) = pi - 2 (atan x_hi - atan x_lo), the
-    // difference of the arc tangents (each in (-pi/2, pi/2)) by one atan2
+    // difference of the arc tangents (each in (-pi/2, pi/2)) by one arc tangent
     const double wn = Wl.norm();
     const double cW = wn > 0.0 ? Wl.x() / wn : 1.0, sW = wn > 0.0 ? Wl.y() / wn : 0.0;
     const double rs = std::sqrt(1.0 - eps * eps);
     const double k = (1.0 - eps) / rs;  // sqrt((1 - eps) / (1 + eps))
     const Somm lo = sommerfeld(sW, -cW, eps, k, rs), hi = sommerfeld(-sW, cW, eps, k, rs);
-    const double dpsi = M_PI - 2.0 * std::atan2(hi.x - lo.x, 1.0 + hi.x * lo.x);
+    // (1 + x_hi x_lo > 0 unless eps > 0.97: then atan2 for the quadrant; atan
+    // alone takes about 0.6 of atan2's time)
+    const double num = hi.x - lo.x, den = 1.0 + hi.x * lo.x;
+    const double dpsi = M_PI - 2.0 * (den > 0.0 ? std::atan(num / den) : std::atan2(num, den));
     // s^(-j/2), j = 0..7 (the half-integer exponents (b + 1)/2 - n)
     double pw[8];
     pw[0] = 1.0;

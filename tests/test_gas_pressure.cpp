@@ -6,6 +6,7 @@
 #include <cmath>
 #include <fstream>
 #include <functional>
+#include <random>
 
 #include "elements/gas_pressure.h"
 
@@ -213,4 +214,36 @@ TEST(GasPressure, SyntheticDieselCycle) {
   for (double x = 0; x < 720; x += 0.37)
     worst = std::max(worst, std::abs(file(x * kRad) - t(x * kRad)));
   EXPECT_LT(worst, 1.0);  // Pa (file written with 1e-6 bar resolution)
+}
+
+// A table of equal spacing is entered by division (gas_pressure.cpp, operator()),
+// any other by bisection: both must pick the same interval. The twin table has
+// one knot moved by 1e-7 deg (so it takes the bisection); away from that knot
+// the knots, values and slopes of the two are the same, so the values must be
+// bitwise equal, at the knots themselves (where rounding of the division could
+// pick the neighbouring interval) and between them.
+TEST(GasPressure, UniformTableEntersTheIntervalsOfTheBisection) {
+  std::vector<double> a, p;
+  for (int k = 0; k < 2400; ++k) {  // 0.3 deg: knots that a division by the step can miss
+    a.push_back(0.3 * k);
+    p.push_back(smooth(0.3 * k));
+  }
+  std::vector<double> a2 = a;
+  a2[2334] += 1e-7;  // 700.2 deg
+  const PressureTable uniform(a, p, "uniform"), twin(a2, p, "twin");
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(0.0, 690.0);
+  std::vector<double> x;
+  for (int k = 0; k < 2300; ++k) x.push_back(a[static_cast<std::size_t>(k)]);  // the knots
+  for (int k = 0; k < 20000; ++k) x.push_back(u(rng));
+  int compared = 0;
+  for (double deg : x)
+    for (double cycle : {0.0, 720.0, -1440.0}) {
+      double d1, d2;
+      const double v1 = uniform((deg + cycle) * kRad, &d1), v2 = twin((deg + cycle) * kRad, &d2);
+      EXPECT_EQ(v1, v2) << "at " << deg + cycle << " deg";
+      EXPECT_EQ(d1, d2) << "at " << deg + cycle << " deg";
+      ++compared;
+    }
+  EXPECT_EQ(compared, 3 * (2300 + 20000));
 }

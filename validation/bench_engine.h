@@ -315,7 +315,8 @@ inline std::string engine_table(const std::string& path) {
   }
   return os.str() +
          "\nSide by side in this run (µs per step; KLU = today's method on today's model code; "
-         "2026-11-24 = the recorded figure of the code before this work, same machine):\n\n" +
+         "2026-11-24 = the figure of the code before this work as recorded then, on the machine "
+         "of then; the next section runs that code here, side by side):\n\n" +
          side.str() +
          "\nUnit costs on the engine's matrices (initial state, cj = 2e5; n = 72, the "
          "first-order matrix is 2n x 2n = 144 x 144):\n\n" +

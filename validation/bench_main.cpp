@@ -18,6 +18,7 @@
 #include <sstream>
 
 #include "../tests/random_body.h"
+#include "bench_baseline.h"
 #include "bench_engine.h"
 #include "bench_scaling.h"
 #include "elements/spring_damper.h"
@@ -190,6 +191,9 @@ std::string klu_table() {
 int main(int argc, char** argv) {
   const std::string out = argc > 1 ? argv[1] : "";
   const std::string engine = argc > 2 ? argv[2] : "validation/engine/engine.yaml";
+  // the evas of 2026-11-24 and its engine scene (validation/baseline.sh)
+  const std::string old_evas = argc > 3 ? argv[3] : "";
+  const std::string old_engine = argc > 4 ? argv[4] : "";
   std::ostringstream doc;
   doc << "# Performance\n\n"
       << "Measured by `make bench` (`evas_bench`), which regenerates this file. Times are the "
@@ -234,6 +238,20 @@ int main(int argc, char** argv) {
          "channel divided by that channel's amplitude about its mean, the largest over the "
          "channels.\n\n"
       << bench::engine_table(engine) << "\n"
+      << "## Side by side with the code of 2026-11-24\n\n"
+      << "The evas that issue 12 measured its starting point with (commit baefa5a, "
+         "2026-11-24: IDA with KLU on the 144 x 144 first-order matrix, the portable x86-64 "
+         "build of then, its own scene, bodies and pressure table), built from this clone's "
+         "history by `validation/baseline.sh`, and today's evas, as `evas run` processes in "
+         "turn on the same machine (old, new, old, new, ...; 3 pairs, medians). IDA at the "
+         "same rtol (atol = rtol / 1e4), today with the scene's second-order solver; and "
+         "today's cheapest setting below 1e-3 per channel (generalized-alpha at 1/6 deg, "
+         "effective mass, increment test at rtol 3e-5) against the old IDA at rtol 1e-5. us "
+         "per step: the integrator's own wall time (summary.json) over its steps; ratio: old / "
+         "new, pair by pair (how many times fewer us per step, or how many times faster the "
+         "whole process). Real-time factor: today's whole process (start-up, reading the "
+         "bodies, results file) over the 0.24 s simulated.\n\n"
+      << bench::baseline_table(engine, EVAS_PROGRAM, old_evas, old_engine) << "\n"
       << "## Scaling of the engine's cost per step\n\n"
       << "IDA with the second-order solver, rtol 1e-5, atol 1e-9, the first 0.06 s of Case 1; "
          "wall time of init + integrate (minimum of 2 runs) per step; peak memory of the same "
