@@ -15,14 +15,15 @@ DIR=$BUILD/baseline
 if [ -x "$DIR/build/evas" ] && [ "$(cat "$DIR/commit" 2>/dev/null)" = "$COMMIT" ]; then
   exit 0
 fi
-if ! git -C "$(dirname "$0")" cat-file -e "$COMMIT^{commit}" 2>/dev/null; then
+ROOT=$(cd "$(dirname "$0")/.." && pwd)
+if ! git -C "$ROOT" cat-file -e "$COMMIT^{commit}" 2>/dev/null; then
   echo "baseline.sh: commit $COMMIT is not in this clone (shallow?); the side-by-side" \
        "table of docs/performance.md is skipped" >&2
   exit 0
 fi
 rm -rf "$DIR"
 mkdir -p "$DIR/src"
-git -C "$(dirname "$0")" archive "$COMMIT" | tar -x -C "$DIR/src"
+git -C "$ROOT" archive "$COMMIT" | tar -x -C "$DIR/src"
 # as it was built then: the portable x86-64 build, Release
 cmake -S "$DIR/src" -B "$DIR/build" -DCMAKE_BUILD_TYPE=Release -DEVAS_WERROR=OFF >/dev/null
 cmake --build "$DIR/build" -j"$JOBS" --target evas
