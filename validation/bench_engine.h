@@ -22,6 +22,7 @@
 
 #include <klu.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <fstream>
@@ -263,17 +264,32 @@ inline std::string engine_table(const std::string& path) {
           << " | " << u.refactor * 1e6 << " | " << u.solve * 1e6 << " | " << u.so_factor * 1e6
           << " | " << u.so_solve * 1e6 << " |\n";
     std::vector<double> us_klu, us_so;
-    for (const EngineRun& r : engine_runs()) {
-      s.name = r.name;
-      s.linear_solver = r.solver;
-      s.rtol = r.rtol;
-      s.atol = r.atol;
-      if (r.step > 0.0) s.step = r.step;
-      s.step_control = r.control;  // substep: failed steps as sub-steps
+    // Each run 3 times, the repeats interleaved over the runs (run 1, 2, ...,
+    // 12, then again): a slow phase of the shared machine, which lasts
+    // seconds to minutes, then rarely spans all three of one run. The
+    // minimum wall; the counts and results are the same in every repeat.
+    const std::vector<EngineRun> runs = engine_runs();
+    std::vector<study::RunData> best(runs.size());
+    for (int rep = 0; rep < 3; ++rep)
+      for (std::size_t k = 0; k < runs.size(); ++k) {
+        const EngineRun& r = runs[k];
+        s.name = r.name;
+        s.linear_solver = r.solver;
+        s.rtol = r.rtol;
+        s.atol = r.atol;
+        if (r.step > 0.0) s.step = r.step;
+        s.step_control = r.control;  // substep: failed steps as sub-steps
+        study::RunData d = study::run_case(c.src, s, channels);
+        if (d.status != "completed")
+          throw RunError(c.label + " " + run_label(r) + ": " + d.message);
+        if (rep > 0) d.wall = std::min(d.wall, best[k].wall);
+        best[k] = std::move(d);
+      }
+    for (std::size_t k = 0; k < runs.size(); ++k) {
+      const EngineRun& r = runs[k];
       const bool so = r.solver == "second-order";
       const bool ida = r.name == "ida";
-      const study::RunData d = study::run_case_repeated(c.src, s, channels, 3);
-      if (d.status != "completed") throw RunError(c.label + ": " + d.message);
+      const study::RunData& d = best[k];
       const IntegratorStats& st = d.stats;
       const double span = info.t_end - info.t_start;
       const double us = d.wall / static_cast<double>(st.steps) * 1e6;
