@@ -226,15 +226,14 @@ PressureTable PressureTable::read(const std::string& path, double max_gap_deg) {
 }
 
 void PressureTable::build() {
+  const std::size_t n = angle_.size();
   // A table of equal spacing (to 1e-9 of a step) is entered by division, not
   // by bisection (operator(); the same interval either way).
-  const std::size_t m = angle_.size();
-  step_ = m >= 2 ? (angle_[m - 1] - angle_[0]) / static_cast<double>(m - 1) : 0.0;
-  for (std::size_t k = 1; k < m && step_ > 0.0; ++k)
+  step_ = n >= 2 ? (angle_[n - 1] - angle_[0]) / static_cast<double>(n - 1) : 0.0;
+  for (std::size_t k = 1; k < n && step_ > 0.0; ++k)
     if (std::abs(angle_[k] - angle_[k - 1] - step_) > 1e-9 * step_) step_ = 0.0;
   // Periodic PCHIP slopes (Fritsch-Butland weighted harmonic mean; zero at
   // local extrema and where neighbouring secants change sign).
-  const std::size_t n = angle_.size();
   slope_.assign(n, 0.0);
   auto h = [&](std::size_t k) {  // spacing from knot k to k+1 (wrapping)
     return k + 1 < n ? angle_[k + 1] - angle_[k] : angle_[0] + kPeriodDeg - angle_[n - 1];

@@ -536,19 +536,16 @@ void System::observe(double t, const double* q, const double* v, const std::vect
   const auto& all = model_.markers();
   if (oset_.empty() || markers != observed_) {  // (set-up: allocates when the list changes)
     observed_ = markers;
-    observed_mask_.assign(all.size(), 0);
     std::vector<unsigned> parts(all.size(), 0u);
-    for (int m : markers) {
-      observed_mask_.at(static_cast<std::size_t>(m)) = 1;
-      parts[static_cast<std::size_t>(m)] = Element::kReadsTranslation | Element::kReadsRotation;
-    }
+    for (int m : markers)
+      parts.at(static_cast<std::size_t>(m)) = Element::kReadsTranslation | Element::kReadsRotation;
     oset_ = row_sets(parts);
   }
   update_lof(t);
   row_products(oset_, q, v);
-  for (std::size_t m = 0; m < all.size(); ++m) {
+  for (int m : observed_) {
     const int b = all[m].body;
-    if (b < 0 || !observed_mask_[m]) continue;  // ground: constant, set by the constructor
+    if (b < 0) continue;  // ground: constant, set by the constructor
     const RowSet& o = oset_[b];
     const int r = o.tpos[m];
     marker_motion(all[m], lof_[b], axes_[m], o.y.segment<3>(r), o.y.segment<3>(r + 3),

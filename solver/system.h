@@ -226,9 +226,8 @@ class System : public Problem {
   // markers none reads).
   std::vector<RowSet> rset_;
   std::vector<char> unread_;
-  std::vector<RowSet> oset_;         // observe(..., markers): the rows of those markers
-  std::vector<int> observed_;        // ... and the markers they were formed for
-  std::vector<char> observed_mask_;  // per marker: one of them
+  std::vector<RowSet> oset_;   // observe(..., markers): the rows of those markers
+  std::vector<int> observed_;  // ... and the markers they were formed for
   bool reads_only_ = true;
   // Elements whose loads depend on t alone (not state_dependent(), no inertia, no
   // internal states): their generalised loads ftime_ at t_time_, computed once per

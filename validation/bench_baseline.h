@@ -59,13 +59,9 @@ inline double median(std::vector<double> x) {
 inline std::vector<std::pair<std::string, std::string>> scene_files(
     const std::string& engine_path, const std::filesystem::path& dir, const std::string& tag) {
   namespace fs = std::filesystem;
-  const fs::path base = fs::absolute(engine_path).parent_path();
-  const std::string bodies = (base / ".." / "bodies").lexically_normal().string() + "/";
-  const std::string data = (base / ".." / "data").lexically_normal().string() + "/";
   std::vector<std::pair<std::string, std::string>> files;
   for (const auto& c : engine_cases(engine_path)) {
-    const std::string text =
-        replace_all(replace_all(c.src.text, "../bodies/", bodies), "../data/", data);
+    const std::string text = with_absolute_paths(c.src.text, engine_path);
     const fs::path p = dir / (tag + "-" + replace_all(c.label, " ", "") + ".yaml");
     std::ofstream(p) << text;
     files.push_back({c.label, p.string()});

@@ -83,6 +83,20 @@ inline std::string replace_all(std::string s, const std::string& from, const std
   return s;
 }
 
+/// The folder `name` beside the folder of the scene at scene_path (absolute, with
+/// a closing slash): where the engine's ../bodies/ and ../data/ paths point.
+inline std::string sibling_dir(const std::string& scene_path, const std::string& name) {
+  const std::filesystem::path dir = std::filesystem::absolute(scene_path).parent_path();
+  return (dir / ".." / name).lexically_normal().string() + "/";
+}
+
+/// A scene's text with its ../bodies/ and ../data/ paths made absolute, so that
+/// it can be written to another folder.
+inline std::string with_absolute_paths(const std::string& text, const std::string& scene_path) {
+  return replace_all(replace_all(text, "../bodies/", sibling_dir(scene_path, "bodies")), "../data/",
+                     sibling_dir(scene_path, "data"));
+}
+
 /// The mounts block of engine.yaml with each mount split into m copies.
 inline std::string split_mounts(const std::string& text, int m) {
   const auto b = text.find("# MOUNTS BEGIN"), e = text.find("# MOUNTS END");
@@ -130,9 +144,7 @@ inline std::string rebuilt_body(const std::string& evas, const std::filesystem::
 
 inline std::string scaling_table(const std::string& engine_path, const std::string& evas) {
   namespace fs = std::filesystem;
-  const fs::path dir = fs::absolute(engine_path).parent_path();
-  const std::string bodies = (dir / ".." / "bodies").lexically_normal().string() + "/";
-  const std::string data = (dir / ".." / "data").lexically_normal().string() + "/";
+  const std::string bodies = sibling_dir(engine_path, "bodies");
   std::ifstream f(engine_path);
   if (!f) throw InputError(engine_path + ": cannot be read");
   std::stringstream ss;
@@ -149,7 +161,7 @@ inline std::string scaling_table(const std::string& engine_path, const std::stri
   s.atol = 1e-9;
   auto measure = [&](const std::string& label, const std::string& text) {
     // the edited scene with absolute body and data paths, end time 0.06 s
-    std::string t = replace_all(replace_all(text, "../bodies/", bodies), "../data/", data);
+    std::string t = with_absolute_paths(text, engine_path);
     const auto pos = t.find("time: {start: 0, end: 0.24}");
     if (pos == std::string::npos)
       throw InputError(engine_path + ": no 'time: {start: 0, end: 0.24}'");
