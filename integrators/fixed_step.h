@@ -145,6 +145,7 @@ class FixedStepIntegrator : public Integrator {
                        : (err == 0.0 ? 2.0 : 0.2);
       if (!(err <= 1.0)) {
         ++stats_.error_test_failures;
+        undo_step();  // the trial leaves no trace (the retry starts from the same state)
         rejected_ = true;
         h_ = h * fac;
         if (h_ < s_.min_step) fail_below_min_step(h_);
@@ -204,6 +205,10 @@ class FixedStepIntegrator : public Integrator {
   }
   /// The constrained forms it solves, for messages.
   virtual std::string constraint_forms() const { return "penalty forces (formulation=penalty)"; }
+  /// Called when a step that converged is not taken after all (its error
+  /// estimate failed the test): whatever step() changed of the state at t_
+  /// (the Newmark family: the acceleration moved for the change of step) is put back.
+  virtual void undo_step() {}
   /// Called after a step is accepted (the swap of q1_.. into q_.. done).
   virtual void accepted() {}
   /// Sets a_ (and whatever else the method carries) at the start state

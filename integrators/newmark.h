@@ -98,25 +98,38 @@ class NewmarkIntegrator : public FixedStepIntegrator {
   bool step(double t, double h) override;
   void local_error(double h, bool hist, Vec& eq, Vec& ev) const override;
   void accepted() override;
+  /// A converged step not taken: the acceleration shifted_step() moved is given back.
+  void undo_step() override {
+    if (shifted_) shifted_->swap(*shifted_save_);
+    shifted_ = nullptr;
+  }
   /// One step of h by iterate() from the filtered acceleration acc moved for a
-  /// change of step (newmark.cpp, step()); acc is given back when it fails.
+  /// change of step (newmark.cpp, step()); acc is given back when it fails,
+  /// or by undo_step() when the step converged but is not taken.
   /// shift: alpha_m - alpha_f; acc_prev: acc of the step before; save: scratch.
   template <class Iterate>
   bool shifted_step(double h, double shift, Vec& acc, const Vec& acc_prev, Vec& save,
                     Iterate&& iterate) {
     // (fixed steps differ from each other by the round-off of t + h - t: no shift)
+    shifted_ = nullptr;
     if (shift == 0.0 || !has_history() || !(h_prev_ > 0.0) || std::abs(h / h_prev_ - 1.0) < 1e-9)
       return iterate();
     save = acc;
     acc += (shift * (h - h_prev_) / h_prev_) * (acc - acc_prev);
+    shifted_ = &acc;
+    shifted_save_ = &save;
     bool ok = false;
     try {
       ok = iterate();
     } catch (...) {
       acc.swap(save);
+      shifted_ = nullptr;
       throw;
     }
-    if (!ok) acc.swap(save);
+    if (!ok) {
+      acc.swap(save);
+      shifted_ = nullptr;
+    }
     return ok;
   }
   /// The estimates above from the accelerations a_n (a0), a_{n+1} (a1) and the
@@ -153,8 +166,10 @@ class NewmarkIntegrator : public FixedStepIntegrator {
   double h_factor_ = 0.0;
   Vec f_prev_;  // f one step before the current state (valid with has_history())
   Vec R_, delta_;
-  Vec a_save_;                  // a_ before step() shifted it (given back if the step fails)
-  std::vector<double> rnorms_;  // ||R|| per iteration of the current step
+  Vec* shifted_ = nullptr;       // what the last shifted_step() moved (and kept) ...
+  Vec* shifted_save_ = nullptr;  // ... and its value before
+  Vec a_save_;                   // a_ before step() shifted it (given back if the step fails)
+  std::vector<double> rnorms_;   // ||R|| per iteration of the current step
   // Anderson: differences of the fixed-point map values and residuals
   Mat dG_, dF_;
   Vec g_last_, fres_last_;
