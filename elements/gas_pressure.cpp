@@ -140,7 +140,9 @@ PressureTable PressureTable::read(const std::string& path, double max_gap_deg) {
   int no = 0;
   while (std::getline(in, line)) {
     ++no;
-    const std::string here = path + ":" + std::to_string(no);
+    // the place for a message, formed only when one is thrown (a table has
+    // thousands of rows)
+    const auto here = [&] { return path + ":" + std::to_string(no); };
     const auto hash = line.find('#');
     if (hash != std::string::npos) {
       const std::string comment = trim(line.substr(hash + 1));
@@ -149,10 +151,10 @@ PressureTable PressureTable::read(const std::string& path, double max_gap_deg) {
         auto colon = comment.find(':');
         if (colon == std::string::npos) colon = comment.find('=');
         if (colon == std::string::npos)
-          throw InputError(here + ": unit header must read '# unit: bar' (or kPa, MPa, Pa)");
+          throw InputError(here() + ": unit header must read '# unit: bar' (or kPa, MPa, Pa)");
         std::string u = lower(trim(comment.substr(colon + 1)));
         if (!a.empty())
-          throw InputError(here + ": the unit header must come before the first data row");
+          throw InputError(here() + ": the unit header must come before the first data row");
         for (const std::string& g : {std::string(" gauge"), std::string(" (gauge)")})
           if (u.size() > g.size() && u.compare(u.size() - g.size(), g.size(), g) == 0) {
             gauge = true;
@@ -168,20 +170,31 @@ PressureTable PressureTable::read(const std::string& path, double max_gap_deg) {
         else if (u == "pa")
           scale = 1.0;
         else
-          throw InputError(here + ": unknown pressure unit '" + trim(comment.substr(colon + 1)) +
+          throw InputError(here() + ": unknown pressure unit '" + trim(comment.substr(colon + 1)) +
                            "' (expected bar, kPa, MPa or Pa, optionally followed by 'gauge')");
       }
       line = line.substr(0, hash);
     }
     for (char& c : line)
       if (c == ',' || c == ';' || c == '\t' || c == '\r') c = ' ';
-    std::istringstream ls(line);
-    std::vector<std::string> tok;
-    for (std::string s; ls >> s;) tok.push_back(s);
-    if (tok.empty()) continue;
-    if (tok.size() != 2)
-      throw InputError(here + ": expected two numbers 'crank_angle_deg pressure', got " +
-                       std::to_string(tok.size()) + " fields: '" + trim(line) + "'");
+    // fields: runs of characters other than spaces (the separators above are spaces now)
+    std::string tok[2];
+    std::size_t nfields = 0;
+    for (std::size_t i = 0; i < line.size();) {
+      if (std::isspace(static_cast<unsigned char>(line[i]))) {
+        ++i;
+        continue;
+      }
+      std::size_t j = i;
+      while (j < line.size() && !std::isspace(static_cast<unsigned char>(line[j]))) ++j;
+      if (nfields < 2) tok[nfields].assign(line, i, j - i);
+      ++nfields;
+      i = j;
+    }
+    if (nfields == 0) continue;
+    if (nfields != 2)
+      throw InputError(here() + ": expected two numbers 'crank_angle_deg pressure', got " +
+                       std::to_string(nfields) + " fields: '" + trim(line) + "'");
     double v[2];
     for (int i = 0; i < 2; ++i) {
       const char* s = tok[i].c_str();
@@ -189,27 +202,27 @@ PressureTable PressureTable::read(const std::string& path, double max_gap_deg) {
       errno = 0;
       v[i] = std::strtod(s, &end);
       if (end == s || *end != '\0')
-        throw InputError(here + ": '" + tok[i] + "' is not a number (" +
+        throw InputError(here() + ": '" + tok[i] + "' is not a number (" +
                          (i == 0 ? "crank angle" : "pressure") + ")");
       if (!std::isfinite(v[i]))
-        throw InputError(here + ": " + (i == 0 ? "crank angle" : "pressure") + " '" + tok[i] +
+        throw InputError(here() + ": " + (i == 0 ? "crank angle" : "pressure") + " '" + tok[i] +
                          "' is not finite");
     }
     if (scale == 0.0)
-      throw InputError(here +
+      throw InputError(here() +
                        ": data before the unit header; start the file with '# unit: bar' "
                        "(or kPa, MPa, Pa)");
     const double pa = v[1] * scale;
     if (std::abs(pa) > kMaxPressure)
-      throw InputError(here + ": pressure " + tok[1] + " " + unit + " (" + fmt(pa) +
+      throw InputError(here() + ": pressure " + tok[1] + " " + unit + " (" + fmt(pa) +
                        " Pa) is beyond the limit of " + fmt(kMaxPressure) +
                        " Pa (1e5 bar) for a cylinder pressure: wrong unit or corrupt table?");
     if (!gauge && pa < 0.0)
-      throw InputError(here + ": pressure " + tok[1] + " " + unit +
+      throw InputError(here() + ": pressure " + tok[1] + " " + unit +
                        " is negative, but the table holds absolute pressures (write '# unit: " +
                        unit + " gauge' for pressures relative to the atmosphere)");
     if (gauge && pa < -kAtmosphere)
-      throw InputError(here + ": gauge pressure " + tok[1] + " " + unit +
+      throw InputError(here() + ": gauge pressure " + tok[1] + " " + unit +
                        " is below vacuum (-1 atm = -101325 Pa): the absolute pressure would be "
                        "negative");
     a.push_back(v[0]);

@@ -1,8 +1,10 @@
 #include "io/body_file.h"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
-#include <set>
+#include <cstring>
 
 #include "io/hdf5_util.h"
 #include "solver/invariants.h"
@@ -27,6 +29,16 @@ void expect_shape(const std::string& name, const std::vector<hsize_t>& dims,
 }
 
 void expect_finite(const std::string& name, const std::vector<double>& v) {
+  // a first pass over the exponent bits (all ones: Inf or NaN), which vectorizes;
+  // the value is located only when there is one
+  constexpr std::uint64_t kExponent = 0x7ff0000000000000ULL;
+  std::uint64_t any = 0;
+  for (double x : v) {
+    std::uint64_t bits;
+    std::memcpy(&bits, &x, sizeof bits);
+    any |= static_cast<std::uint64_t>((bits & kExponent) == kExponent);
+  }
+  if (any == 0) return;
   for (std::size_t i = 0; i < v.size(); ++i)
     if (!std::isfinite(v[i]))
       throw h5::Failure("dataset '" + name + "' has a non-finite value at flat index " +
@@ -272,11 +284,14 @@ ModalBody read_body(hid_t file) {
     throw h5::Failure("dataset '/nodes/ids' has shape " + shape_text(dims) + ", expected (N,)");
   const hsize_t N = dims[0];
   body.node_ids.assign(ids.begin(), ids.end());
+  // the ids in order: repeats are neighbours, and a set's members are found by
+  // bisection (a block has thousands of nodes)
+  std::vector<long> sorted_ids(body.node_ids);
+  std::sort(sorted_ids.begin(), sorted_ids.end());
   {
-    std::set<long> seen;
-    for (long id : body.node_ids)
-      if (!seen.insert(id).second)
-        throw h5::Failure("dataset '/nodes/ids' repeats node id " + std::to_string(id));
+    const auto rep = std::adjacent_find(sorted_ids.begin(), sorted_ids.end());
+    if (rep != sorted_ids.end())
+      throw h5::Failure("dataset '/nodes/ids' repeats node id " + std::to_string(*rep));
   }
   const std::vector<hsize_t> w_xyz = {N, 3}, w_N = {N}, w_N1 = {N + 1};
   const std::vector<double> xyz = read_doubles(file, "/nodes/coordinates", dims, &w_xyz);
@@ -365,19 +380,19 @@ ModalBody read_body(hid_t file) {
   // Node sets (optional group).
   if (h5::exists(file, "/sets")) {
     h5::Handle g = h5::open_group(file, "/sets");
-    std::set<long> known(body.node_ids.begin(), body.node_ids.end());
     for (const std::string& name : h5::list_links(g)) {
       const std::string path = "/sets/" + name;
       const std::vector<long long> set = read_int64s(file, path, dims);
       if (dims.size() != 1) throw h5::Failure("dataset '" + path + "' must be one-dimensional");
-      std::set<long long> in_set;
-      for (long long id : set) {
-        if (!known.count(id))
+      for (long long id : set)
+        if (!std::binary_search(sorted_ids.begin(), sorted_ids.end(), static_cast<long>(id)))
           throw h5::Failure("dataset '" + path + "' names node " + std::to_string(id) +
                             ", which is not in '/nodes/ids'");
-        if (!in_set.insert(id).second)
-          throw h5::Failure("dataset '" + path + "' repeats node id " + std::to_string(id));
-      }
+      std::vector<long long> members(set);
+      std::sort(members.begin(), members.end());
+      const auto rep = std::adjacent_find(members.begin(), members.end());
+      if (rep != members.end())
+        throw h5::Failure("dataset '" + path + "' repeats node id " + std::to_string(*rep));
       body.node_sets[name].assign(set.begin(), set.end());
     }
   }

@@ -5,10 +5,10 @@
 #   scripts/sanitize.sh [BUILD_DIR]        (default build-fuzz)
 #
 # Builds with clang in the fuzz/ project (the same instrumented library as the
-# fuzzers, -O1 -g): the test executables below into BUILD_DIR/tests and the evas
-# program, which test_bad_inputs (the bad-input catalogue, tests/data/bad) and
-# test_run_faults run, so every evas process they start is sanitized too. Each
-# test runs with
+# fuzzers, -O1 -gline-tables-only): the test executables below into
+# BUILD_DIR/tests and the evas program, which test_bad_inputs (the bad-input
+# catalogue, tests/data/bad) and test_run_faults run, so every evas process they
+# start is sanitized too. Each test runs with
 #   ASAN_OPTIONS=detect_leaks=1:log_path=...   UBSAN_OPTIONS=halt_on_error=1:log_path=...
 # so that a report of any process, the test's own or a child's, lands in a file.
 # Exits 1 if there is any sanitizer report, 2 if a test fails without one, 0 if

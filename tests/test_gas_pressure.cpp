@@ -141,7 +141,10 @@ TEST(GasPressure, NoOvershootAtSteepRise) {
 }
 
 TEST(GasPressure, ReadsUnitsAndFormats) {
-  const std::string body = "0 1.0\n180\t2.0\n  360 ,  4.0\n540 3.0  # trailing comment\n";
+  // separators: spaces, tabs, commas, semicolons, carriage returns; a line of
+  // separators alone is blank
+  const std::string body =
+      "0 1.0\n180\t2.0\n , ;\t\r\n  360 ,  4.0\r\n540;3.0  # trailing comment\n";
   const double gap = 200.0;  // coarse test tables
   const PressureTable bar = PressureTable::read(temp_file("bar", "# unit: bar\n" + body), gap);
   const PressureTable mpa = PressureTable::read(temp_file("mpa", "# Unit: MPa\n" + body), gap);
@@ -164,6 +167,7 @@ TEST(GasPressure, BadFilesNameFileAndLine) {
   expect_error("0 1\n90 2\n", {":1:", "unit header"}, "nounit");
   expect_error("# unit: psi\n0 1\n", {":1:", "psi"}, "badunit");
   expect_error(h + "0 1\n10 2 3\n", {":3:", "two numbers"}, "threefields");
+  expect_error(h + "0 1\n\t10 ,\n", {":3:", "got 1 fields: '10'"}, "onefield");
   expect_error(h + "0 1\n10 abc\n", {":3:", "abc"}, "notanumber");
   expect_error(h + "0 1\n10 nan\n", {":3:", "not finite"}, "nan");
   expect_error(h + "0 1\ninf 2\n", {":3:", "not finite"}, "inf");
