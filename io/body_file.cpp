@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
+#include <optional>
 
 #include "io/hdf5_util.h"
 #include "solver/invariants.h"
@@ -26,6 +27,14 @@ void expect_shape(const std::string& name, const std::vector<hsize_t>& dims,
   if (dims != want)
     throw h5::Failure("dataset '" + name + "' has shape " + shape_text(dims) + ", expected " +
                       shape_text(want));
+}
+
+// A value that occurs twice in the sorted `values` (the smallest such), or none.
+template <class T>
+std::optional<T> repeat_in_sorted(const std::vector<T>& values) {
+  const auto rep = std::adjacent_find(values.begin(), values.end());
+  if (rep == values.end()) return std::nullopt;
+  return *rep;
 }
 
 void expect_finite(const std::string& name, const std::vector<double>& v) {
@@ -288,11 +297,8 @@ ModalBody read_body(hid_t file) {
   // bisection (a block has thousands of nodes)
   std::vector<long> sorted_ids(body.node_ids);
   std::sort(sorted_ids.begin(), sorted_ids.end());
-  {
-    const auto rep = std::adjacent_find(sorted_ids.begin(), sorted_ids.end());
-    if (rep != sorted_ids.end())
-      throw h5::Failure("dataset '/nodes/ids' repeats node id " + std::to_string(*rep));
-  }
+  if (const auto rep = repeat_in_sorted(sorted_ids))
+    throw h5::Failure("dataset '/nodes/ids' repeats node id " + std::to_string(*rep));
   const std::vector<hsize_t> w_xyz = {N, 3}, w_N = {N}, w_N1 = {N + 1};
   const std::vector<double> xyz = read_doubles(file, "/nodes/coordinates", dims, &w_xyz);
   expect_finite("/nodes/coordinates", xyz);
@@ -390,8 +396,7 @@ ModalBody read_body(hid_t file) {
                             ", which is not in '/nodes/ids'");
       std::vector<long long> members(set);
       std::sort(members.begin(), members.end());
-      const auto rep = std::adjacent_find(members.begin(), members.end());
-      if (rep != members.end())
+      if (const auto rep = repeat_in_sorted(members))
         throw h5::Failure("dataset '" + path + "' repeats node id " + std::to_string(*rep));
       body.node_sets[name].assign(set.begin(), set.end());
     }
