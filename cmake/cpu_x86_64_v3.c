@@ -15,9 +15,8 @@ int main(void) {
   if (!__get_cpuid(0x80000001u, &a, &b, &e1, &d)) return 1;
   /* leaf 1, ECX: SSE3 0, SSSE3 9, FMA 12, CMPXCHG16B 13, SSE4.1 19,
    * SSE4.2 20, MOVBE 22, POPCNT 23, OSXSAVE 27, AVX 28, F16C 29 */
-  const unsigned need1 = (1u << 0) | (1u << 9) | (1u << 12) | (1u << 13) | (1u << 19) |
-                         (1u << 20) | (1u << 22) | (1u << 23) | (1u << 27) | (1u << 28) |
-                         (1u << 29);
+  const unsigned need1 = (1u << 0) | (1u << 9) | (1u << 12) | (1u << 13) | (1u << 19) | (1u << 20) |
+                         (1u << 22) | (1u << 23) | (1u << 27) | (1u << 28) | (1u << 29);
   /* leaf 7, EBX: BMI1 3, AVX2 5, BMI2 8 */
   const unsigned need7 = (1u << 3) | (1u << 5) | (1u << 8);
   /* leaf 0x80000001, ECX: LAHF/SAHF 0, LZCNT 5 */

@@ -124,13 +124,18 @@ void OutputSet::add_multiplier_channels() {
   for (int i = 0; i < m; ++i) channels_.push_back({sys_.constraint_name(i) + ".lambda", ""});
 }
 
+double OutputSet::crank_angle(double t) const {
+  if (crank_body_ < 0) throw std::logic_error("OutputSet::crank_angle: no crank-angle grid");
+  return sys_.model().bodies()[crank_body_].lof.spin_angle(t) * kDeg;
+}
+
 void OutputSet::values(double t, const double* q, const double* v, double* out,
                        const double* lambda) {
   Model& model = sys_.model();
   // the channels' markers (with inertial elements every marker and the full
   // accelerations: those elements report the solved ones)
   sys_.observe(t, q, v, markers_);
-  if (crank_body_ >= 0) out[0] = model.bodies()[crank_body_].lof.spin_angle(t) * kDeg;
+  if (crank_body_ >= 0) out[0] = crank_angle(t);
   for (const Source& src : sources_) {
     double* o = out + src.first;
     switch (src.kind) {

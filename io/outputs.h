@@ -42,6 +42,10 @@ class OutputSet {
   /// `lambda` (m values); `out` has size(). Updates the system's markers.
   void values(double t, const double* q, const double* v, double* out,
               const double* lambda = nullptr);
+  /// The crank-angle channel alone at time t [deg] (it is kinematic: the crank
+  /// body's LOF), without evaluating any element; requires the crank-angle grid.
+  double crank_angle(double t) const;
+  bool has_crank_angle() const { return crank_body_ >= 0; }
 
  private:
   struct Source {

@@ -30,20 +30,10 @@ SceneInfo probe_scene(const SceneSource& src) {
   if (scene.output.grid == "crank-angle")
     for (std::size_t i = 0; i < info.channels.size(); ++i)
       if (info.channels[i].name == "crank_angle") info.crank_channel = static_cast<int>(i);
-  if (info.crank_channel >= 0) {
-    // the angle is kinematic (the crank body's LOF): the initial state serves at every time
-    Vec q0, v0;
-    sys.initial_state(q0, v0);
-    std::vector<double> row(static_cast<std::size_t>(out.size()));
-    try {
-      for (double t : info.times) {
-        out.values(t, q0.data(), v0.data(), row.data());
-        info.crank.push_back(row[static_cast<std::size_t>(info.crank_channel)]);
-      }
-    } catch (const std::exception&) {
-      info.crank.clear();  // an element refused the initial state: angles come from the reference
-    }
-  }
+  // The angle is kinematic (the crank body's LOF): read from it alone, not by
+  // evaluating every channel at every output time.
+  if (info.crank_channel >= 0 && out.has_crank_angle())
+    for (double t : info.times) info.crank.push_back(out.crank_angle(t));
   return info;
 }
 

@@ -19,8 +19,11 @@
 
 #include "integrators/settings.h"
 #include "io/hdf5_util.h"
+#include "io/outputs.h"
 #include "io/results.h"
+#include "io/scene.h"
 #include "solver/modal_body.h"
+#include "solver/system.h"
 #include "solver/truss.h"
 #include "study/study.h"
 
@@ -609,4 +612,29 @@ TEST(StudyStability, SweepAndUnconditionallyStableCase) {
   EXPECT_EQ(sw.points[1].value, "[1e6,1e6,1e6]");
   for (const auto& p : sw.points) EXPECT_EQ(p.status, "stable up to HMAX") << p.message;
   EXPECT_TRUE(fs::exists(dir.path() / "out" / "stability.csv"));
+}
+
+// probe_scene reads the crank angle of every output time from the crank body's
+// LOF alone; the values are those of the run's crank_angle channel, which
+// OutputSet::values computes along with every other channel.
+TEST(StudyProbe, CrankAnglesAreTheRunsChannel) {
+  const std::string path = std::string(EVAS_SOURCE_DIR) + "/validation/engine/engine.yaml";
+  const SceneSource src = load_scene_source(path, {});
+  const SceneInfo info = probe_scene(src);
+  ASSERT_GE(info.crank_channel, 0);
+  ASSERT_EQ(info.crank.size(), info.times.size());
+  ASSERT_GT(info.times.size(), 1000u);
+  Scene scene = src.parse();
+  System sys(*scene.model);
+  OutputSet out(scene.output, sys, scene.t_start, scene.t_end);
+  Vec q0, v0;
+  sys.initial_state(q0, v0);
+  std::vector<double> row(static_cast<std::size_t>(out.size()));
+  for (std::size_t k = 0; k < info.times.size(); k += 97) {
+    out.values(info.times[k], q0.data(), v0.data(), row.data());
+    EXPECT_EQ(info.crank[k], row[static_cast<std::size_t>(info.crank_channel)]) << "row " << k;
+  }
+  // the grid is 1 deg of crank angle
+  for (std::size_t k = 1; k < info.crank.size(); ++k)
+    ASSERT_NEAR(info.crank[k] - info.crank[k - 1], 1.0, 1e-9) << "row " << k;
 }
