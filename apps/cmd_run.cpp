@@ -152,6 +152,8 @@ int cmd_run(const std::vector<std::string>& args) {
     for (const auto& a : vm["set"].as<std::vector<std::string>>()) apply_setting_assignment(set, a);
   if (vm.count("t-end")) {
     scene.t_end = vm["t-end"].as<double>();
+    if (!std::isfinite(scene.t_end))
+      throw InputError("--t-end: " + std::to_string(scene.t_end) + " is not a finite time");
     if (!(scene.t_end > scene.t_start))
       throw InputError("--t-end must be after the start time " + std::to_string(scene.t_start));
   }

@@ -123,7 +123,7 @@ class FixedStepIntegrator : public Integrator {
       // which left an adaptive step stuck at a small size: it never grew)
       const bool cut = h < h_plan - snap;
       if (!adaptive) {
-        take_interval(h);
+        take_interval(h, tout);
         continue;
       }
       if (h < s_.min_step && cut) {  // a sliver before a stop or output: take it as it is
@@ -308,14 +308,18 @@ class FixedStepIntegrator : public Integrator {
   }
 
   // The interval [t_, t_ + h] with steps of h, cut into sub-steps where needed.
-  void take_interval(double h) {
+  // Sub-steps end at the output time tout when it lies inside the interval:
+  // advance() interpolates its output on the last step taken, so no sub-step may
+  // pass it (the outputs before the last sub-step would be extrapolated). The
+  // next interval then starts there.
+  void take_interval(double h, double tout) {
     if (try_step(h)) {
       accept(h);
       return;
     }
     ++stats_.convergence_failures;
     if (s_.step_control == "fixed") throw RunError(failure_);
-    const double t_end = t_ + h;
+    const double t_end = tout > t_ && tout < t_ + h ? tout : t_ + h;
     double hs = 0.5 * h;
     while (t_end - t_ > 1e-9 * h) {
       const double rest = t_end - t_;

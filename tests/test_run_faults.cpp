@@ -430,6 +430,25 @@ TEST(RunFaults, WallTimeLimit) {
   std::printf("[ measured ] --max-wall 2: exit %d after %.2f s\n", o.code, o.seconds);
 }
 
+TEST(RunFaults, EndTimeMustBeFiniteAndAfterTheStart) {
+  // NaN failed the ordering test with a message about the start time; inf
+  // reached the output grid's row limit. Both now name what is wrong.
+  TempFolder tmp;
+  const std::string scene = sparse_scene(tmp.path()).string();
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"nan", "--t-end: nan is not a finite time"},
+      {"inf", "--t-end: inf is not a finite time"},
+      {"-1", "--t-end must be after the start time"}};
+  for (const auto& [value, message] : cases) {
+    const fs::path out = tmp.path() / ("out" + value);
+    const Outcome o =
+        run_evas({"run", scene, "--out", out.string(), "-q", "--t-end", value}, tmp.path() / "log");
+    EXPECT_EQ(o.code, 1) << value << ": " << o.log;
+    EXPECT_TRUE(contains(o.log, message)) << value << ": " << o.log;
+    EXPECT_FALSE(fs::exists(out / "results.h5")) << value;
+  }
+}
+
 TEST(RunFaults, ProgressShowsTheStep) {
   TempFolder tmp;
   write_text(tmp.path() / "s.yaml", demo_scene("progress", "0.01", "5e-4"));
@@ -620,39 +639,40 @@ TEST(RunFaults, StudyStopsOnSigtermWithItsOutputs) {
 }
 
 // A state at an output that an element refuses, although the steps around it
-// passed the integrator's tests: the paper's engine under generalized-alpha at
-// a step of 3e-4 s (1.3 steps per period of its highest mode, about 30 times
-// coarser than the engine needs) leaves the film model's range at t = 0.0759 s
-// in the interpolant between two steps. The run fails (exit 2) naming the time,
-// the element and the state, and keeps the rows written before. (Until the
-// iteration matrix was formed from a fresh Jacobian at every change of step,
-// the default step of 1e-4 s failed so too; it now completes.)
+// passed the integrator's tests. Such a state came from the sub-steps of a
+// failed interval, which passed the output and left it to be extrapolated:
+// the paper's engine under generalized-alpha at a step of 3e-4 s failed so at
+// t = 0.0759 s. Sub-steps now end at the output and that run completes, so a
+// test plug-in (tests/plugins/bad_state.cpp) hands back the wrong state: the
+// engine's state under generalized-alpha (h 8e-6 s) with every modal
+// coordinate scaled by 1e3 at the 100th output. The run fails (exit 2) naming
+// the time, the element and the state, and keeps the rows written before.
 TEST(RunFaults, OutputOutsideAnElementsRangeReportsTheState) {
   TempFolder tmp;
   const fs::path out = tmp.path() / "out";
   const std::string scene =
       (fs::path(EVAS_SOURCE_DIR) / "validation" / "engine" / "engine.yaml").string();
-  const Outcome o = run_evas({"run", scene, "--out", out.string(), "-q", "--t-end", "0.09", "--set",
-                              "name=generalized-alpha", "--set", "step=3e-4"},
-                             tmp.path() / "log");
+  const Outcome o =
+      run_evas({"run", scene, "--plugin", EVAS_BAD_STATE_PLUGIN, "--out", out.string(), "-q",
+                "--t-end", "0.01", "--set", "name=bad-state-at-output", "--set", "step=8e-6"},
+               tmp.path() / "log");
   EXPECT_EQ(o.code, 2) << o.log;
   EXPECT_TRUE(contains(o.log, "the output channels at t = ")) << o.log;
   EXPECT_TRUE(contains(o.log, "journal bearing '")) << o.log;
   EXPECT_TRUE(contains(o.log, "body 'block': max|q| = ")) << o.log;
-  EXPECT_TRUE(contains(o.log, "a smaller 'step'")) << o.log;
   const std::string json = read_text(out / "summary.json");
   EXPECT_TRUE(contains(json, "\"status\": \"failed: the output channels")) << json;
   const auto kept = read_results((out / "results.h5").string()).time;  // the run has ended
   ASSERT_FALSE(kept.empty());
   std::printf("[ measured ] rows kept: %zu, the last at t = %.6g s\n", kept.size(), kept.back());
-  EXPECT_GT(kept.size(), 1000u);  // measured 1367, up to t = 0.0759444 s
-  // every row before the failing output is kept, none from it on: the last
-  // kept row is the output (every 1 deg = 1/18000 s) just before it
+  // the initial row and the 99 outputs before the wrong one (every 1 deg = 1/18000 s)
+  EXPECT_EQ(kept.size(), 100u);
   const std::string key = "the output channels at t = ";
   const std::size_t at = o.log.find(key);
   ASSERT_NE(at, std::string::npos) << o.log;
   const double t_fail = std::stod(o.log.substr(at + key.size(), 20));
   std::printf("[ measured ] failing output at t = %.10g s\n", t_fail);
+  EXPECT_NEAR(t_fail, 100.0 / 18000.0, 1e-7);  // 314.159 rad/s, not 100 pi
   EXPECT_LT(kept.back(), t_fail);
   EXPECT_GT(kept.back(), t_fail - 1.5 / 18000.0);
 }
