@@ -18,7 +18,9 @@
 //             interval with sub-steps (halved after each failure, doubled again
 //             after a success, never beyond the interval), counted in
 //             stats.substeps; the run fails when a sub-step would fall below
-//             settings.min_step. The step grid is the same as with `fixed`.
+//             settings.min_step. The step grid is the same as with `fixed`;
+//             an output inside an interval in sub-steps is interpolated on the
+//             sub-step that reaches it (the next call goes on from there).
 //   adaptive  from settings.step, each step's local error estimate e (from the
 //             derived class) is measured in the weighted RMS norm of SUNDIALS,
 //             w_i = 1 / (rtol |y_i| + atol) over q and v; the step is accepted
@@ -218,6 +220,7 @@ class FixedStepIntegrator : public Integrator {
   /// Current state (t_, q_, v_) with f_ = f(t, q, v) and start_acceleration().
   void start(double t) {
     t_ = t;
+    sub_end_ = -std::numeric_limits<double>::infinity();  // no interval in sub-steps
     t_prev_ = t;
     tout_last_ = t;
     have_prev_ = false;
@@ -308,33 +311,40 @@ class FixedStepIntegrator : public Integrator {
   }
 
   // The interval [t_, t_ + h] with steps of h, cut into sub-steps where needed.
-  // Sub-steps end at the output time tout when it lies inside the interval:
-  // advance() interpolates its output on the last step taken, so no sub-step may
-  // pass it (the outputs before the last sub-step would be extrapolated). The
-  // next interval then starts there.
+  // advance() interpolates an output between steps on the last step taken, so
+  // the sub-steps stop at the first that reaches the output time tout when it
+  // lies inside the interval; the next call goes on with the same interval
+  // (sub_end_, sub_h_), so the step grid stays that of `fixed`. (Before, the
+  // sub-steps ran to the interval's end and an output before the last one was
+  // extrapolated from it.)
   void take_interval(double h, double tout) {
-    if (try_step(h)) {
-      accept(h);
-      return;
+    if (!(sub_end_ > t_)) {  // a new interval
+      if (try_step(h)) {
+        accept(h);
+        return;
+      }
+      ++stats_.convergence_failures;
+      if (s_.step_control == "fixed") throw RunError(failure_);
+      sub_end_ = t_ + h;
+      sub_len_ = h;
+      sub_h_ = 0.5 * h;
     }
-    ++stats_.convergence_failures;
-    if (s_.step_control == "fixed") throw RunError(failure_);
-    const double t_end = tout > t_ && tout < t_ + h ? tout : t_ + h;
-    double hs = 0.5 * h;
-    while (t_end - t_ > 1e-9 * h) {
-      const double rest = t_end - t_;
-      const double hh = hs >= rest * (1.0 - 1e-9) ? rest : hs;
+    while (sub_end_ - t_ > 1e-9 * sub_len_) {
+      const double rest = sub_end_ - t_;
+      const double hh = sub_h_ >= rest * (1.0 - 1e-9) ? rest : sub_h_;
       if (hh < s_.min_step) fail_below_min_step(hh);
       if (try_step(hh)) {
         accept(hh);
         ++stats_.substeps;
-        hs = std::min(2.0 * hh, t_end - t_);
+        sub_h_ = std::min(2.0 * hh, sub_end_ - t_);
+        if (t_ >= tout && sub_end_ - t_ > 1e-9 * sub_len_) return;  // the output is passed
       } else {
         ++stats_.convergence_failures;
-        hs = 0.5 * hh;
+        sub_h_ = 0.5 * hh;
       }
     }
-    t_ = t_end;  // remove round-off of the sum of sub-steps
+    t_ = sub_end_;  // remove round-off of the sum of sub-steps
+    sub_end_ = -std::numeric_limits<double>::infinity();
   }
 
   [[noreturn]] void fail_below_min_step(double h) const {
@@ -358,6 +368,9 @@ class FixedStepIntegrator : public Integrator {
 
   double t_prev_ = 0.0;
   double tout_last_ = 0.0;
+  // substep: the end and length of an interval being crossed in sub-steps (none
+  // when sub_end_ <= t_), and its next sub-step
+  double sub_end_ = -std::numeric_limits<double>::infinity(), sub_len_ = 0.0, sub_h_ = 0.0;
   double h_ = 0.0;  // adaptive: the planned step
   bool have_prev_ = false;
   double err_prev_ = 0.0;  // error norm of the last accepted step (0: none since a start)

@@ -648,6 +648,10 @@ TEST(RunFaults, StudyStopsOnSigtermWithItsOutputs) {
 // coordinate scaled by 1e3 at the 100th output. The run fails (exit 2) naming
 // the time, the element and the state, and keeps the rows written before.
 TEST(RunFaults, OutputOutsideAnElementsRangeReportsTheState) {
+#ifndef EVAS_BAD_STATE_PLUGIN
+  GTEST_SKIP() << "built without the test plug-in (tests/CMakeLists.txt builds it; the "
+                  "sanitizer build of fuzz/CMakeLists.txt does not)";
+#else
   TempFolder tmp;
   const fs::path out = tmp.path() / "out";
   const std::string scene =
@@ -675,6 +679,7 @@ TEST(RunFaults, OutputOutsideAnElementsRangeReportsTheState) {
   EXPECT_NEAR(t_fail, 100.0 / 18000.0, 1e-7);  // 314.159 rad/s, not 100 pi
   EXPECT_LT(kept.back(), t_fail);
   EXPECT_GT(kept.back(), t_fail - 1.5 / 18000.0);
+#endif
 }
 
 // A fixed step too coarse for the bodies' highest mode is warned of before the

@@ -155,18 +155,19 @@ TEST(StepControl, SubstepsRescueADivergingFixedPoint) {
 }
 
 TEST(StepControl, SubstepsStopAtAnOutputInsideTheInterval) {
-  // As above (every interval of h = 0.2 fails and is cut), but with four
-  // outputs per interval, none landed. The outputs are interpolated on the last
-  // step taken, so the sub-steps of a failed interval stop at the output: here
-  // every interval ends at the next output, and the run takes the steps of a run
-  // at h/4 = 0.05 landing on its outputs. Before, the sub-steps went on to the
-  // interval's end and the outputs before the last sub-step were extrapolated
-  // from it (0.89 from the run at h/4 here, on an amplitude of 1).
+  // As above (every interval of h = 0.2 fails and is crossed in two sub-steps
+  // of h/2), but with four outputs per interval, none landed. An output is
+  // interpolated on the last step taken, so the sub-steps stop at the first
+  // that reaches the output, and the next output goes on with the same
+  // interval: the run takes the steps of a run at h/2 and interpolates its
+  // outputs as that run does. Before, the sub-steps went on to the interval's
+  // end and the outputs before the last sub-step were extrapolated from it
+  // (0.12 from the run at h/2 here, on an amplitude of 1).
   Oscillator o;
   o.omega = 2 * kPi * 3.0;
   o.zeta = 0.02;
   o.q0 = 1.0;
-  auto outputs = [&](const IntegratorSettings& s, bool land, IntegratorStats& st) {
+  auto outputs = [&](const IntegratorSettings& s, IntegratorStats& st) {
     SdofProblem p({o}, false);
     auto integ = make_integrator(s.name);
     Vec q, v;
@@ -174,7 +175,7 @@ TEST(StepControl, SubstepsStopAtAnOutputInsideTheInterval) {
     integ->init(p, 0.0, q, v, s);
     std::vector<Vec> out;
     for (int j = 1; j <= 20; ++j) {
-      integ->advance(0.05 * j, land, q, v);
+      integ->advance(0.05 * j, false, q, v);
       out.push_back(q);
     }
     st = integ->stats();
@@ -182,19 +183,19 @@ TEST(StepControl, SubstepsStopAtAnOutputInsideTheInterval) {
   };
   IntegratorSettings s = la("fixed-point", 0.2);
   s.balance_tol = 1e-10;
-  IntegratorStats sub_stats, quarter_stats;
-  const std::vector<Vec> sub = outputs(s, false, sub_stats);
+  IntegratorStats sub_stats, half_stats;
+  const std::vector<Vec> sub = outputs(s, sub_stats);
   s.step_control = "fixed";
-  s.step = 0.05;
-  const std::vector<Vec> quarter = outputs(s, true, quarter_stats);
+  s.step = 0.1;
+  const std::vector<Vec> half = outputs(s, half_stats);
   double d = 0.0;
   for (std::size_t j = 0; j < sub.size(); ++j)
-    d = std::max(d, (sub[j] - quarter[j]).lpNorm<Eigen::Infinity>());
+    d = std::max(d, (sub[j] - half[j]).lpNorm<Eigen::Infinity>());
   std::cout << "sub-steps " << sub_stats.substeps << ", steps " << sub_stats.steps
-            << "; |q - q(h/4)| at the outputs " << d << "\n";
-  EXPECT_EQ(sub_stats.substeps, 20);
-  EXPECT_EQ(sub_stats.steps, quarter_stats.steps);
-  EXPECT_LT(d, 1e-10);
+            << "; |q - q(h/2)| at the outputs " << d << "\n";
+  EXPECT_EQ(sub_stats.substeps, 10);
+  EXPECT_EQ(sub_stats.steps, half_stats.steps);
+  EXPECT_LT(d, 1e-12);
 }
 
 TEST(StepControl, SubstepFailsBelowMinStepWithTheReason) {
