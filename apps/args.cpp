@@ -1,6 +1,7 @@
 #include <iostream>
 
 #include "apps/commands.h"
+#include "integrators/settings.h"
 
 namespace evas::cli {
 
@@ -25,6 +26,20 @@ bool parse_args(const std::vector<std::string>& args, const po::options_descript
     return true;
   }
   return false;
+}
+
+void warn_unread_settings(const std::string& command, const po::variables_map& vm,
+                          const IntegratorSettings& s) {
+  std::vector<std::pair<std::string, std::string>> given;  // {option, key}
+  for (const char* key : {"rtol", "atol", "step"})
+    if (vm.count(key) && !vm[key].defaulted()) given.emplace_back(std::string("--") + key, key);
+  if (vm.count("set"))
+    for (const auto& a : vm["set"].as<std::vector<std::string>>())
+      given.emplace_back("--set " + a, a.substr(0, a.find('=')));
+  for (const auto& [option, key] : given)
+    if (const std::string why = setting_unread_reason(s, key); !why.empty())
+      std::cerr << "evas " << command << ": warning: " << option << ": " << why
+                << "; it has no effect on this run\n";
 }
 
 }  // namespace evas::cli

@@ -120,6 +120,7 @@ int cmd_problem(const std::vector<std::string>& args) {
   if (vm.count("step")) set_integrator_setting(s, "step", vm["step"].as<std::string>());
   if (vm.count("set"))
     for (const auto& a : vm["set"].as<std::vector<std::string>>()) apply_setting_assignment(s, a);
+  if (!vm.count("work-precision")) warn_unread_settings("problem", vm, s);
 
   if (vm.count("work-precision")) {
     if (!vm.count("out")) throw InputError("--work-precision needs --out DIR for its table");

@@ -150,6 +150,7 @@ int cmd_run(const std::vector<std::string>& args) {
     }
   if (vm.count("set"))
     for (const auto& a : vm["set"].as<std::vector<std::string>>()) apply_setting_assignment(set, a);
+  warn_unread_settings("run", vm, set);
   if (vm.count("t-end")) {
     scene.t_end = vm["t-end"].as<double>();
     if (!std::isfinite(scene.t_end))

@@ -8,6 +8,10 @@
 #include <string>
 #include <vector>
 
+namespace evas {
+struct IntegratorSettings;
+}
+
 namespace evas::cli {
 
 namespace po = boost::program_options;
@@ -17,6 +21,14 @@ namespace po = boost::program_options;
 /// (the help is printed); the command then exits 0.
 bool parse_args(const std::vector<std::string>& args, const po::options_description& opts,
                 const std::vector<std::string>& positional, po::variables_map& vm);
+
+/// Warns on stderr ("evas COMMAND: warning: ...") of each integrator setting
+/// given on the command line (--rtol, --atol, --step, and each --set
+/// KEY=VALUE) that the run's method `s` does not read
+/// (setting_unread_reason): `--step 1e-5` on an ida run would otherwise be
+/// ignored without a word. The options absent from `vm` are skipped.
+void warn_unread_settings(const std::string& command, const po::variables_map& vm,
+                          const IntegratorSettings& s);
 
 int cmd_run(const std::vector<std::string>& args);
 int cmd_info(const std::vector<std::string>& args);

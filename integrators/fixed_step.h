@@ -61,8 +61,17 @@ class FixedStepIntegrator : public Integrator {
     if (s.step_control != "fixed" && s.step_control != "substep" && s.step_control != "adaptive")
       throw InputError(name() + ": step_control '" + s.step_control +
                        "' is unknown (fixed, substep, adaptive)");
-    if (s.step_control == "adaptive" && s.max_step > 0.0 && s.max_step < s.min_step)
-      throw InputError(name() + ": max_step is below min_step");
+    // the first step, min(step, max_step), must be one the step control may take
+    if (s.step_control != "fixed") {
+      if (s.max_step > 0.0 && s.max_step < s.min_step)
+        throw InputError(name() + ": max_step = " + format_number(s.max_step) +
+                         " s is below min_step = " + format_number(s.min_step) + " s");
+      if (s.step < s.min_step)
+        throw InputError(name() + ": step = " + format_number(s.step) +
+                         " s is below min_step = " + format_number(s.min_step) + " s (" +
+                         (s.step_control == "adaptive" ? "the first step" : "the fixed step") +
+                         " must be one the step control may take)");
+    }
     // Constraints: in the integrator's own form where it has one
     // (takes_constraints), else only as the penalty ODE (dae/penalty.h).
     base_ = &p;

@@ -241,6 +241,46 @@ std::vector<std::string> settings_not_read_by(const std::string& integrator) {
   return keys;
 }
 
+std::string setting_unread_reason(const IntegratorSettings& s, const std::string& key) {
+  const SettingInfo& info = find(key).info;
+  const std::vector<std::string> builtin = builtin_integrator_names();
+  auto is_builtin = [&](const std::string& w) {
+    return std::find(builtin.begin(), builtin.end(), w) != builtin.end();
+  };
+  if (!is_builtin(s.name)) return "";
+  // "ida, cvode", "ida: linear_solver=second-order" or "iteration=anderson":
+  // methods before ':' (or the whole text without '='), a condition after it
+  const std::string& a = info.applies;
+  const auto colon = a.find(':');
+  std::string methods = colon != std::string::npos         ? a.substr(0, colon)
+                        : a.find('=') == std::string::npos ? a
+                                                           : "";
+  std::string condition = colon != std::string::npos         ? a.substr(colon + 1)
+                          : a.find('=') != std::string::npos ? a
+                                                             : "";
+  condition.erase(0, condition.find_first_not_of(' '));
+  std::string list = methods;
+  std::replace(list.begin(), list.end(), ',', ' ');
+  std::istringstream words(list);
+  std::vector<std::string> named;
+  bool methods_only = true;
+  for (std::string w; words >> w;) {
+    methods_only = methods_only && is_builtin(w);
+    named.push_back(w);
+  }
+  if (!named.empty() && methods_only &&
+      std::find(named.begin(), named.end(), s.name) == named.end())
+    return s.name + " does not read it (" + join(named) + (named.size() > 1 ? " do)" : " does)");
+  const auto eq = condition.find('=');
+  if (eq == std::string::npos) return "";
+  const std::string ckey = condition.substr(0, eq), cvalue = condition.substr(eq + 1);
+  if (const std::string r = setting_unread_reason(s, ckey); !r.empty())
+    return s.name + " does not read it (it applies with " + condition + ")";
+  const std::string here = get_integrator_setting(s, ckey);
+  if (here != cvalue) return "it is read only with " + condition + " (here: " + here + ")";
+  return "";
+}
+
 void set_integrator_setting(IntegratorSettings& s, const std::string& key,
                             const std::string& value) {
   find(key).set(s, value);

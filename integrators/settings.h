@@ -50,6 +50,13 @@ std::string settings_label(const IntegratorSettings& s);
 /// Empty for a plug-in, whose reads are its own.
 std::vector<std::string> settings_not_read_by(const std::string& integrator);
 
+/// Why the setting `key` has no effect in a run with `s`: empty when s's method
+/// reads it, or may (a plug-in's reads are its own); otherwise a clause such as
+/// "ida does not read it (generalized-alpha, linear-acceleration, radau do)" or
+/// "it is read only with iteration=anderson (here: effective-mass)", from the
+/// table's `applies` column. Throws InputError for an unknown key.
+std::string setting_unread_reason(const IntegratorSettings& s, const std::string& key);
+
 /// Markdown table of every setting (for --help-settings and the user guide).
 std::string settings_reference();
 

@@ -196,6 +196,7 @@ std::vector<Case> expand_case(const std::string& spec, const IntegratorSettings&
   }
   std::vector<Case> cases;
   std::vector<std::size_t> idx(axes.size(), 0);
+  std::vector<bool> read(axes.size(), false);  // a key some case's method reads
   for (std::size_t n = 0; n < total; ++n) {
     Case c;
     c.settings = start;
@@ -208,6 +209,8 @@ std::vector<Case> expand_case(const std::string& spec, const IntegratorSettings&
         throw InputError(prefix + e.what());
       }
     }
+    for (std::size_t k = 0; k < axes.size(); ++k)
+      read[k] = read[k] || setting_unread_reason(c.settings, axes[k].first).empty();
     c.label = settings_label(c.settings);
     cases.push_back(std::move(c));
     // odometer, last key fastest
@@ -216,6 +219,12 @@ std::vector<Case> expand_case(const std::string& spec, const IntegratorSettings&
       idx[k] = 0;
     }
   }
+  // a key no case reads would make its values the same run under other labels
+  for (std::size_t k = 0; k < axes.size(); ++k)
+    if (!read[k])
+      throw InputError(prefix + "'" + axes[k].first + "': " +
+                       setting_unread_reason(cases.front().settings, axes[k].first) +
+                       ", so it has no effect on these cases");
   return cases;
 }
 

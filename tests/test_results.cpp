@@ -216,6 +216,46 @@ TEST(Results, SettingsNotReadByEachMethod) {
   EXPECT_TRUE(settings_not_read_by("my-plugin").empty());
 }
 
+// The reason a setting has no effect, from the `applies` column of the table:
+// the method, or a condition on another setting (evas run warns with it, evas
+// study refuses a case key no case reads).
+TEST(Results, UnreadSettingsAreNamedWithTheReason) {
+  struct Check {
+    const char *name, *linear_solver, *iteration, *formulation, *key, *reason;
+  };
+  const Check checks[] = {
+      {"ida", "klu", "default", "default", "step",
+       "ida does not read it (generalized-alpha, linear-acceleration, radau do)"},
+      {"ida", "klu", "default", "default", "rho_inf",
+       "ida does not read it (generalized-alpha does)"},
+      {"ida", "klu", "default", "default", "rtol", ""},
+      {"ida", "klu", "default", "default", "max_steps", ""},
+      {"ida", "klu", "default", "default", "jacobian_age",
+       "it is read only with linear_solver=second-order (here: klu)"},
+      {"ida", "second-order", "default", "default", "jacobian_age", ""},
+      {"ida", "klu", "anderson", "default", "anderson_depth",
+       "ida does not read it (it applies with iteration=anderson)"},
+      {"cvode", "second-order", "default", "default", "jacobian_age",
+       "cvode does not read it (ida does)"},
+      {"linear-acceleration", "klu", "default", "default", "anderson_depth",
+       "it is read only with iteration=anderson (here: default)"},
+      {"linear-acceleration", "klu", "anderson", "default", "anderson_depth", ""},
+      {"generalized-alpha", "klu", "default", "default", "baumgarte_beta",
+       "it is read only with formulation=index-1 (here: default)"},
+      {"ida", "klu", "default", "index-1", "baumgarte_beta", ""},
+      {"my-plugin", "klu", "default", "default", "rho_inf", ""},  // a plug-in's own
+  };
+  for (const Check& c : checks) {
+    IntegratorSettings s;
+    s.name = c.name;
+    s.linear_solver = c.linear_solver;
+    s.iteration = c.iteration;
+    s.formulation = c.formulation;
+    EXPECT_EQ(setting_unread_reason(s, c.key), c.reason) << c.name << " " << c.key;
+  }
+  EXPECT_THROW(setting_unread_reason(IntegratorSettings{}, "rtoll"), InputError);
+}
+
 TEST(Results, ReadErrorsNameTheFile) {
   try {
     read_results(tmp_path("nothing.h5"));

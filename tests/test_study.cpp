@@ -211,6 +211,31 @@ TEST(StudyCaseGrid, BadKeyValueOrRangeIsAnInputErrorNamingTheCase) {
   EXPECT_NE(msg.find("cases.txt:4: case 'cvode x=1'"), std::string::npos) << msg;
 }
 
+// A key the case's method does not read would give every value the same run
+// under a different label: a convergence or work-precision study that
+// measures nothing. It is refused, unless some case of the spec reads it.
+TEST(StudyCaseGrid, AKeyNoCaseReadsIsAnInputError) {
+  const IntegratorSettings base;
+  std::string msg = input_error([&] { expand_case("ida step=1e-5,2e-5", base); });
+  EXPECT_NE(msg.find("--case 'ida step=1e-5,2e-5': 'step': ida does not read it "
+                     "(generalized-alpha, linear-acceleration, radau do)"),
+            std::string::npos)
+      << msg;
+  msg = input_error([&] { expand_case("radau rtol=1e-4 max_steps=100", base); });
+  EXPECT_NE(msg.find("'max_steps': radau does not read it (ida, cvode do)"), std::string::npos)
+      << msg;
+  msg = input_error([&] { expand_case("linear-acceleration anderson_depth=2,4", base); });
+  EXPECT_NE(msg.find("'anderson_depth': it is read only with iteration=anderson (here: default)"),
+            std::string::npos)
+      << msg;
+  // read by the anderson cases of the grid: kept, in every case
+  const auto c =
+      expand_case("linear-acceleration iteration=fixed-point,anderson anderson_depth=2", base);
+  ASSERT_EQ(c.size(), 2u);
+  EXPECT_EQ(c[1].settings.iteration, "anderson");
+  EXPECT_EQ(c[1].settings.anderson_depth, 2);
+}
+
 TEST(StudyCaseGrid, GlobMatch) {
   EXPECT_TRUE(glob_match("main*.fx", "main1.fx"));
   EXPECT_TRUE(glob_match("*", ""));
