@@ -131,9 +131,8 @@ class CvodeIntegrator final : public Integrator {
           return h;
         },
         [&] { return current_time(); },
-        [&](int flag) {
-          fail(flag < 0 ? sundials::flag_name(CVodeGetReturnFlagName(flag))
-                        : "more than max_steps steps to reach the output");
+        [&](int flag, const std::string& why) {
+          fail(flag < 0 ? sundials::flag_name(CVodeGetReturnFlagName(flag)) : why);
         },
         [&](double t, double h) { step_done(t, h); });
     if (!exact) {

@@ -168,9 +168,8 @@ class IdaIntegrator final : public Integrator {
           return h;
         },
         [&] { return current_time(); },
-        [&](int flag) {
-          fail(flag < 0 ? sundials::flag_name(IDAGetReturnFlagName(flag))
-                        : "more than max_steps steps to reach the output");
+        [&](int flag, const std::string& why) {
+          fail(flag < 0 ? sundials::flag_name(IDAGetReturnFlagName(flag)) : why);
         },
         [&](double t, double h) { step_done(t, h); });
     if (!exact) {

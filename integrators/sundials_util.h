@@ -15,8 +15,11 @@
 #include <sunmatrix/sunmatrix_sparse.h>
 
 #include <algorithm>
+#include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <exception>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -230,28 +233,46 @@ inline void add_segment(IntegratorStats& total, const IntegratorStats& seg) {
   total.convergence_failures += seg.convergence_failures;
 }
 
+/// A step below this fraction of |t| moves t by at most about a thousand units
+/// in the last place: the solution no longer advances (see step_to).
+constexpr double kStalledStepRatio = 1000.0 * std::numeric_limits<double>::epsilon();
+/// Steps in a row below kStalledStepRatio |t| that end the run.
+constexpr long kStalledSteps = 1000;
+
 /// The stepping loop shared by the IDA and CVODE adapters: one internal step at
 /// a time towards tout (so that every step size is seen), stopping early when
 /// the solver returns at its stop time exactly at tout. `step(tret)` takes one
-/// step and returns the solver flag; `fail(flag)` reports a negative flag, or
-/// flag 0 for more than max_steps steps; `on_step(t, h)` sees every accepted
-/// step (the run's step monitor: it may throw to end the run). Returns true
-/// when the solver's state is the solution at exactly tout (else the caller
+/// step and returns the solver flag; `fail(flag, why)` reports a negative
+/// flag (why empty), or with flag 0 the loop's own reason: more than max_steps
+/// steps, or kStalledSteps steps in a row below kStalledStepRatio |t| (IDA and
+/// CVODE keep stepping when t + h rounds to t: on the paper's engine with a
+/// clearance of 1 um IDA took 933,717 steps down to 4.9e-36 s in two minutes
+/// without leaving t = 7.7e-4 s). `on_step(t, h)` sees every accepted step
+/// (the run's step monitor: it may throw to end the run). Returns true when
+/// the solver's state is the solution at exactly tout (else the caller
 /// interpolates).
 template <class Step, class LastStep, class Time, class Fail, class OnStep>
 bool step_to(double tout, long max_steps, int tstop_return, IntegratorStats& total, Step step,
              LastStep last_step, Time time, Fail fail, OnStep on_step) {
-  long steps = 0;
+  long steps = 0, stalled = 0;
   for (double tn = time(); tn < tout;) {
     double tret = tn;
     const int flag = step(tret);
-    if (flag < 0) fail(flag);
+    if (flag < 0) fail(flag, std::string());
     const double h = last_step();
     note_step(total, h);
     tn = time();
     on_step(tn, h);
     if (flag == tstop_return && tret == tout) return true;
-    if (++steps > max_steps) fail(0);
+    if (++steps > max_steps) fail(0, "more than max_steps steps to reach the output");
+    stalled = std::abs(h) <= kStalledStepRatio * std::abs(tn) ? stalled + 1 : 0;
+    if (stalled >= kStalledSteps) {
+      char text[160];
+      std::snprintf(text, sizeof text,
+                    "%ld steps in a row below %.2g |t| (the last %.3g s): t no longer advances",
+                    kStalledSteps, kStalledStepRatio, h);
+      fail(0, text);
+    }
   }
   return false;
 }

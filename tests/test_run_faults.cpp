@@ -682,6 +682,45 @@ TEST(RunFaults, OutputOutsideAnElementsRangeReportsTheState) {
 #endif
 }
 
+// IDA and CVODE keep stepping when t + h rounds to t. The paper's engine with
+// a main-bearing clearance of 1 um (30 um in the paper) closes a film within
+// a millisecond: IDA took 933,717 steps down to 4.9e-36 s in two minutes
+// without leaving t = 7.7e-4 s (a run bounded only by max_steps = 1e7 per
+// output). A run whose steps stay below 1000 eps |t| for 1000 steps now fails
+// there, naming the film that closed, and keeps its rows. --max-wall bounds
+// the run without the check (it would then fail on the wall-time limit).
+TEST(RunFaults, StepsThatNoLongerAdvanceTimeEndTheRun) {
+  TempFolder tmp;
+  const fs::path v = fs::path(EVAS_SOURCE_DIR) / "validation";
+  std::string scene = read_text(v / "engine" / "engine.yaml");
+  auto replace_all = [&](const std::string& from, const std::string& to) {
+    for (std::size_t at = scene.find(from); at != std::string::npos;
+         at = scene.find(from, at + to.size()))
+      scene.replace(at, from.size(), to);
+  };
+  replace_all("clearance: 3e-5", "clearance: 1e-6");
+  replace_all("../bodies/", (v / "bodies").string() + "/");
+  replace_all("../data/", (v / "data").string() + "/");
+  write_text(tmp.path() / "tight.yaml", scene);
+  const fs::path out = tmp.path() / "out";
+  const Outcome o = run_evas({"run", (tmp.path() / "tight.yaml").string(), "--out", out.string(),
+                              "-q", "--integrator", "ida", "--t-end", "0.01", "--max-wall", "60"},
+                             tmp.path() / "log");
+  EXPECT_EQ(o.code, 2) << o.log;
+  EXPECT_TRUE(contains(o.log, "ida: 1000 steps in a row below 2.2e-13 |t|")) << o.log;
+  EXPECT_TRUE(contains(o.log, "t no longer advances")) << o.log;
+  EXPECT_TRUE(contains(o.log, "film closed")) << o.log;
+  const std::string json = read_text(out / "summary.json");
+  const std::size_t at = json.find("\"steps\": ");
+  ASSERT_NE(at, std::string::npos) << json;
+  const long steps = std::stol(json.substr(at + 9));
+  std::printf("[ measured ] steps before the run ended: %ld\n", steps);
+  EXPECT_LT(steps, 100000);
+  const auto kept = read_results((out / "results.h5").string()).time;
+  ASSERT_FALSE(kept.empty());
+  EXPECT_GT(kept.back(), 5e-4);  // the rows up to the last output before the stall
+}
+
 // A fixed step too coarse for the bodies' highest mode is warned of before the
 // run: the paper's engine (highest mode 2.5 kHz) under generalized-alpha at its
 // default step of 1e-4 s (4 steps per period), but not at 8e-6 s (50) nor with
