@@ -168,7 +168,13 @@ int cmd_run(const std::vector<std::string>& args) {
   OutputSet outputs(scene.output, sys, scene.t_start, scene.t_end);
   if (outputs.times().empty())
     throw InputError(scene.path + ": output: the grid has no output time in [" +
-                     std::to_string(scene.t_start) + ", " + std::to_string(scene.t_end) + "] s");
+                     std::to_string(scene.t_start) + ", " + std::to_string(scene.t_end) + "] s" +
+                     (outputs.has_crank_angle()
+                          ? " (on the crank-angle grid: the crank turns from " +
+                                format_number(outputs.crank_angle(scene.t_start)) + " to " +
+                                format_number(outputs.crank_angle(scene.t_end)) +
+                                " deg in that time)"
+                          : std::string()));
   if (!vm.count("out")) check_folder_name(scene);
   const std::filesystem::path dir = vm.count("out")
                                         ? std::filesystem::path(vm["out"].as<std::string>())
