@@ -222,8 +222,8 @@ std::vector<Case> expand_case(const std::string& spec, const IntegratorSettings&
   // a key no case reads would make its values the same run under other labels
   for (std::size_t k = 0; k < axes.size(); ++k)
     if (!read[k])
-      throw InputError(prefix + "'" + axes[k].first + "': " +
-                       setting_unread_reason(cases.front().settings, axes[k].first) +
+      throw InputError(prefix + "'" + axes[k].first +
+                       "': " + setting_unread_reason(cases.front().settings, axes[k].first) +
                        ", so it has no effect on these cases");
   return cases;
 }
