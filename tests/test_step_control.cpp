@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "integrators/integrator.h"
+#include "integrators/sundials_util.h"
 #include "sdof_problem.h"
 
 namespace evas {
@@ -325,3 +326,48 @@ TEST(RecoverableErrors, OtherErrorsStillEndTheRun) {
 
 }  // namespace
 }  // namespace evas
+
+// The stepping loop of the IDA and CVODE adapters (sundials::step_to) ends a
+// run whose steps stay below 1000 eps |t| for 1000 steps in a row: IDA and
+// CVODE keep stepping when t + h rounds to t (the paper's engine at a
+// clearance of 1 um: 933,717 steps down to 4.9e-36 s in two minutes, without
+// leaving t = 7.7e-4 s; tests/test_run_faults.cpp runs that scene). A stand-in
+// solver takes steps of a given size from t = 1e-3 s.
+TEST(StepControl, SundialsLoopEndsWhenTimeNoLongerAdvances) {
+  auto run = [](const std::vector<double>& pattern, long max_steps, long& steps) {
+    double t = 1e-3, h = 0.0;
+    steps = 0;
+    evas::IntegratorStats total;
+    try {
+      evas::sundials::step_to(
+          2e-3, max_steps, 99, total,
+          [&](double& tret) {
+            h = pattern[static_cast<std::size_t>(steps++) % pattern.size()];
+            t += h;
+            tret = t;
+            return 0;
+          },
+          [&] { return h; }, [&] { return t; },
+          [&](int, const std::string& why) { throw std::runtime_error(why); },
+          [](double, double) {});
+    } catch (const std::runtime_error& e) {
+      return std::string(e.what());
+    }
+    return std::string("reached");
+  };
+  long steps = 0;
+  // 1e-17 s at t = 1e-3 s is 1e-14 |t|, below 2.2e-13 |t|: the 1000th step ends it
+  std::string why = run({1e-17}, 10000000, steps);
+  EXPECT_EQ(why, "1000 steps in a row below 2.2e-13 |t| (the last 1e-17 s): t no longer advances");
+  EXPECT_EQ(steps, 1000);
+  // 1e-15 s is 1e-12 |t|: slow but advancing, so only max_steps ends it
+  why = run({1e-15}, 5000, steps);
+  EXPECT_EQ(why, "more than max_steps steps to reach the output");
+  EXPECT_EQ(steps, 5001);
+  // 999 tiny steps then a normal one, repeated: never 1000 in a row
+  std::vector<double> pattern(999, 1e-17);
+  pattern.push_back(1e-6);
+  why = run(pattern, 10000000, steps);
+  EXPECT_EQ(why, "reached");
+  EXPECT_GT(steps, 999000);
+}
