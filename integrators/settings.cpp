@@ -219,65 +219,71 @@ const std::vector<SettingInfo>& integrator_settings() {
   return infos;
 }
 
-std::vector<std::string> settings_not_read_by(const std::string& integrator) {
+namespace {
+
+bool is_builtin(const std::string& name) {
   const std::vector<std::string> builtin = builtin_integrator_names();
-  auto is_builtin = [&](const std::string& w) {
-    return std::find(builtin.begin(), builtin.end(), w) != builtin.end();
-  };
+  return std::find(builtin.begin(), builtin.end(), name) != builtin.end();
+}
+
+// An `applies` text of the table: "ida, cvode", "ida: linear_solver=second-order",
+// "iteration=anderson", "all adaptive". `methods` are the built-in methods it
+// names before ':' (empty when it names anything else); `condition` is the
+// KEY=VALUE after ':', or the whole text when it is one.
+struct Applies {
+  std::vector<std::string> methods;
+  std::string condition;
+};
+
+Applies parse_applies(const std::string& a) {
+  Applies out;
+  const auto colon = a.find(':');
+  std::string list = colon != std::string::npos ? a.substr(0, colon) : a;
+  std::replace(list.begin(), list.end(), ',', ' ');
+  std::istringstream words(list);
+  for (std::string w; words >> w;) {
+    if (!is_builtin(w)) {
+      out.methods.clear();
+      break;
+    }
+    out.methods.push_back(w);
+  }
+  out.condition = colon != std::string::npos         ? a.substr(colon + 1)
+                  : a.find('=') != std::string::npos ? a
+                                                     : "";
+  out.condition.erase(0, out.condition.find_first_not_of(' '));
+  return out;
+}
+
+bool names(const Applies& ap, const std::string& method) {
+  return std::find(ap.methods.begin(), ap.methods.end(), method) != ap.methods.end();
+}
+
+}  // namespace
+
+std::vector<std::string> settings_not_read_by(const std::string& integrator) {
   std::vector<std::string> keys;
   if (!is_builtin(integrator)) return keys;
   for (const auto& info : integrator_settings()) {
-    // "ida, cvode" or "ida: linear_solver=second-order": the methods before ':'
-    std::string list = info.applies.substr(0, info.applies.find(':'));
-    std::replace(list.begin(), list.end(), ',', ' ');
-    std::istringstream words(list);
-    bool methods_only = true, named = false;
-    for (std::string w; words >> w;) {
-      methods_only = methods_only && is_builtin(w);
-      named = named || w == integrator;
-    }
-    if (methods_only && !named) keys.push_back(info.key);
+    const Applies ap = parse_applies(info.applies);
+    if (!ap.methods.empty() && !names(ap, integrator)) keys.push_back(info.key);
   }
   return keys;
 }
 
 std::string setting_unread_reason(const IntegratorSettings& s, const std::string& key) {
-  const SettingInfo& info = find(key).info;
-  const std::vector<std::string> builtin = builtin_integrator_names();
-  auto is_builtin = [&](const std::string& w) {
-    return std::find(builtin.begin(), builtin.end(), w) != builtin.end();
-  };
   if (!is_builtin(s.name)) return "";
-  // "ida, cvode", "ida: linear_solver=second-order" or "iteration=anderson":
-  // methods before ':' (or the whole text without '='), a condition after it
-  const std::string& a = info.applies;
-  const auto colon = a.find(':');
-  std::string methods = colon != std::string::npos         ? a.substr(0, colon)
-                        : a.find('=') == std::string::npos ? a
-                                                           : "";
-  std::string condition = colon != std::string::npos         ? a.substr(colon + 1)
-                          : a.find('=') != std::string::npos ? a
-                                                             : "";
-  condition.erase(0, condition.find_first_not_of(' '));
-  std::string list = methods;
-  std::replace(list.begin(), list.end(), ',', ' ');
-  std::istringstream words(list);
-  std::vector<std::string> named;
-  bool methods_only = true;
-  for (std::string w; words >> w;) {
-    methods_only = methods_only && is_builtin(w);
-    named.push_back(w);
-  }
-  if (!named.empty() && methods_only &&
-      std::find(named.begin(), named.end(), s.name) == named.end())
-    return s.name + " does not read it (" + join(named) + (named.size() > 1 ? " do)" : " does)");
-  const auto eq = condition.find('=');
+  const Applies ap = parse_applies(find(key).info.applies);
+  if (!ap.methods.empty() && !names(ap, s.name))
+    return s.name + " does not read it (" + join(ap.methods) +
+           (ap.methods.size() > 1 ? " do)" : " does)");
+  const auto eq = ap.condition.find('=');
   if (eq == std::string::npos) return "";
-  const std::string ckey = condition.substr(0, eq), cvalue = condition.substr(eq + 1);
-  if (const std::string r = setting_unread_reason(s, ckey); !r.empty())
-    return s.name + " does not read it (it applies with " + condition + ")";
+  const std::string ckey = ap.condition.substr(0, eq), cvalue = ap.condition.substr(eq + 1);
+  if (!setting_unread_reason(s, ckey).empty())
+    return s.name + " does not read it (it applies with " + ap.condition + ")";
   const std::string here = get_integrator_setting(s, ckey);
-  if (here != cvalue) return "it is read only with " + condition + " (here: " + here + ")";
+  if (here != cvalue) return "it is read only with " + ap.condition + " (here: " + here + ")";
   return "";
 }
 
