@@ -1,8 +1,8 @@
-#include "apps/run_stop.h"
+#include "run/stop.h"
 
 #include <cstdio>
 
-namespace evas::cli {
+namespace evas::run {
 
 namespace {
 
@@ -25,7 +25,7 @@ const char* signal_name(int sig) {
 
 }  // namespace
 
-RunStop::RunStop(double max_wall_seconds)
+Stop::Stop(double max_wall_seconds)
     : max_wall_(max_wall_seconds), start_(std::chrono::steady_clock::now()) {
   g_signal = 0;
   struct sigaction sa {};
@@ -43,30 +43,30 @@ RunStop::RunStop(double max_wall_seconds)
   install(SIGHUP, old_hup_);
 }
 
-RunStop::~RunStop() {
+Stop::~Stop() {
   sigaction(SIGINT, &old_int_, nullptr);
   sigaction(SIGTERM, &old_term_, nullptr);
   sigaction(SIGHUP, &old_hup_, nullptr);
 }
 
-bool RunStop::due() const {
+bool Stop::due() const {
   return g_signal != 0 ||
          (max_wall_ > 0.0 &&
           std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count() >
               max_wall_);
 }
 
-void RunStop::stop(double t, double h) const {
+void Stop::stop(double t, double h) const {
   char where[96];
   if (h > 0.0)
     std::snprintf(where, sizeof where, "at t = %.9g s, last step h = %.3g s", t, h);
   else
     std::snprintf(where, sizeof where, "at t = %.9g s", t);
   if (const int sig = g_signal)
-    throw RunStopped(std::string("interrupted (") + signal_name(sig) + ") " + where, 128 + sig);
+    throw Stopped(std::string("interrupted (") + signal_name(sig) + ") " + where, 128 + sig);
   char limit[40];
   std::snprintf(limit, sizeof limit, "%g", max_wall_);
-  throw RunStopped(std::string("wall-time limit ") + limit + " s reached " + where, 2);
+  throw Stopped(std::string("wall-time limit ") + limit + " s reached " + where, 2);
 }
 
-}  // namespace evas::cli
+}  // namespace evas::run

@@ -1,0 +1,140 @@
+// A run into an output folder (folder_run.h).
+#include "run/folder_run.h"
+
+#include <iostream>
+#include <memory>
+
+#include "io/results.h"
+#include "io/run_lock.h"
+#include "run/progress.h"
+#include "run/stop.h"
+
+namespace evas::run {
+
+namespace {
+
+// The rows to the results file, stopping on request, flushing rows that wait
+// too long, drawing the progress line.
+class ResultsSink : public RowSink {
+ public:
+  ResultsSink(const std::string& path, ResultsWriter::Options opt, const Stop& stop,
+              Progress& progress)
+      : path_(path), opt_(std::move(opt)), stop_(stop), progress_(progress) {}
+
+  void begin(const std::vector<Channel>& channels, const Integrator& integ) override {
+    integ_ = &integ;
+    writer_ = std::make_unique<ResultsWriter>(path_, channels, opt_);
+  }
+  void between_steps(double t, double h) override {
+    if (stop_.due()) stop_.stop(t, h);
+    writer_->flush_if_due();
+    if (progress_.due()) progress_.draw(t, integ_->stats().steps, h);
+  }
+  void row(double t, const double* values) override {
+    writer_->append(t, values);
+    if (progress_.due()) {
+      const IntegratorStats st = integ_->stats();
+      progress_.draw(t, st.steps, st.last_step);
+    }
+  }
+  ResultsWriter* writer() { return writer_.get(); }
+
+ private:
+  std::string path_;
+  ResultsWriter::Options opt_;
+  const Stop& stop_;
+  Progress& progress_;
+  const Integrator* integ_ = nullptr;
+  std::unique_ptr<ResultsWriter> writer_;
+};
+
+// A write after the run: its failure is reported and fails a run that had
+// completed (exit 2), never hides the run's own failure.
+template <class Write>
+void write_after(FolderResult& r, const std::string& prefix, Write&& write) {
+  try {
+    write();
+  } catch (const std::exception& e) {
+    std::cerr << prefix << ": FAILED: " << e.what() << "\n";
+    if (r.outcome.exit_code == 0) {
+      r.outcome.status = Status::failed;
+      r.outcome.message = e.what();
+      r.outcome.exit_code = 2;
+    }
+  }
+}
+
+}  // namespace
+
+FolderResult run_into_folder(const Scene& scene, double t_end, const IntegratorSettings& settings,
+                             const FolderOptions& opt) {
+  const std::unique_ptr<Integrator> integ = make_integrator(settings.name);
+  SceneRun run(scene, t_end);
+  std::error_code ec;
+  std::filesystem::create_directories(opt.dir, ec);
+  if (ec)
+    throw InputError(opt.dir.string() + ": cannot create the output directory: " + ec.message());
+  // One run per folder: refuse before anything in it is touched.
+  const RunLock lock(opt.dir);
+  if (!lock.note().empty()) std::cerr << opt.log_prefix << ": warning: " << lock.note() << "\n";
+  const Stop stop(opt.max_wall);  // signals from here on end the run in order
+
+  FolderResult r;
+  r.results = (opt.dir / "results.h5").string();
+  ResultsWriter::Options wopt;
+  wopt.scene_text = scene.text;
+  wopt.integrator = settings.name;
+  wopt.grid = scene.output.grid;
+  Progress progress(opt.quiet, scene.t_start, t_end);
+  ResultsSink sink(r.results, wopt, stop, progress);
+  if (!opt.quiet)
+    std::cerr << opt.log_prefix << ": scene '" << scene.name << "', "
+              << scene.model->bodies().size() << " bodies, " << run.system().size()
+              << " modal coordinates, " << scene.model->elements().size()
+              << " elements, integrator " << settings.name << ", " << run.outputs().times().size()
+              << " output points, t = " << scene.t_start << " .. " << t_end << " s\n";
+
+  r.outcome = run.perform(*integ, settings, sink);
+  if (r.outcome.completed()) {
+    const IntegratorStats& st = r.outcome.stats;
+    progress.draw(sink.writer()->last_time(), st.steps, st.last_step);
+  } else {
+    progress.end();
+    std::cerr << opt.log_prefix << ": FAILED: " << r.outcome.message << "\n";
+  }
+  progress.end();
+
+  // The results, the summary and the CSV are each written as far as they can be.
+  ResultsWriter* writer = sink.writer();
+  if (writer)
+    write_after(r, opt.log_prefix,
+                [&] { writer->finish(r.outcome.stats, r.outcome.status_text()); });
+  RunSummary sum;
+  sum.scene = scene.name;
+  sum.scene_path = scene.path;
+  sum.integrator = settings.name;
+  sum.settings = settings;
+  sum.grid = scene.output.grid;
+  sum.status = r.outcome.status_text();
+  sum.t_start = scene.t_start;
+  sum.t_end = t_end;
+  r.rows = writer ? writer->rows_written() : 0;
+  r.t_reached = r.rows > 0 ? writer->last_time_written() : scene.t_start;
+  sum.t_reached = r.t_reached;
+  sum.rows = r.rows;
+  sum.peak_memory_mb = process_peak_memory_mb();
+  sum.stats = r.outcome.stats;
+  if (writer) {
+    sum.channels = writer->channels();
+    sum.channel_summary = writer->summary();
+  }
+  r.summary = (opt.dir / "summary.json").string();
+  write_after(r, opt.log_prefix, [&] { write_summary_json(r.summary, sum); });
+  if (opt.csv) {
+    r.csv = (opt.dir / "results.csv").string();
+    write_after(r, opt.log_prefix, [&] { export_csv(r.results, r.csv); });
+  }
+  return r;
+}
+
+}  // namespace evas::run
