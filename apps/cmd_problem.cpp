@@ -36,7 +36,6 @@ void write_summary(const std::filesystem::path& dir, const problems::LibraryProb
   std::ofstream f(dir / "summary.json");
   if (!f) throw InputError((dir / "summary.json").string() + ": cannot write the file");
   const bool ok = run.failure.empty();
-  const IntegratorStats& st = run.stats;
   f << "{\n  \"problem\": " << json_string(lp.name)
     << ",\n  \"integrator\": " << json_string(s.name)
     << ",\n  \"formulation\": " << json_string(s.formulation) << ",\n  \"rtol\": " << num(s.rtol)
@@ -51,11 +50,8 @@ void write_summary(const std::filesystem::path& dir, const problems::LibraryProb
     for (int i = 0; i < n; ++i) f << (i ? ", " : "") << num(run.v(i));
     f << "]";
   }
-  f << ",\n  \"steps\": " << st.steps << ",\n  \"residual_evals\": " << st.residual_evals
-    << ",\n  \"jacobian_evals\": " << st.jacobian_evals
-    << ",\n  \"error_test_failures\": " << st.error_test_failures
-    << ",\n  \"convergence_failures\": " << st.convergence_failures
-    << ",\n  \"wall_seconds\": " << num(run.wall);
+  f << ",\n  \"wall_seconds\": " << num(run.wall) << ",\n  \"stats\": {\n"
+    << stats_json_members(run.stats, "    ") << "\n  }";
   if (ok) f << ",\n  \"max_constraint_end\": " << num(run.g_end);
   f << "\n}\n";
   if (!f) throw InputError((dir / "summary.json").string() + ": writing failed");

@@ -1,6 +1,5 @@
 #include "apps/problem_run.h"
 
-#include <chrono>
 #include <cmath>
 #include <fstream>
 #include <iomanip>
@@ -8,6 +7,7 @@
 #include <vector>
 
 #include "dae/constraint_stats.h"
+#include "run/run.h"
 #include "study/report.h"
 
 namespace evas::cli {
@@ -15,21 +15,14 @@ namespace evas::cli {
 ProblemRun run_problem(const problems::LibraryProblem& lp, const IntegratorSettings& s) {
   ProblemRun r;
   auto problem = lp.make();
-  auto integ = make_integrator(s.name);
-  problem->initial_state(r.q, r.v);
-  const auto t0 = std::chrono::steady_clock::now();
-  try {
-    integ->init(*problem, 0.0, r.q, r.v, s);
-    integ->advance(lp.t_end, true, r.q, r.v);
-  } catch (const InputError&) {
-    throw;
-  } catch (const std::exception& e) {
-    r.failure = e.what();
-  }
-  r.wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  r.stats = integ->stats();
+  run::EndState end = run::run_to_end(*problem, s, 0.0, lp.t_end);
+  r.q = std::move(end.q);
+  r.v = std::move(end.v);
+  r.lambda = std::move(end.lambda);
+  r.wall = end.outcome.wall;
+  r.stats = end.outcome.stats;
+  r.failure = end.outcome.message;
   if (!r.failure.empty()) return r;
-  if (!integ->multipliers(r.lambda)) r.lambda.resize(0);
   r.score = problems::score(lp, r.q, r.v, r.lambda, s.rtol, s.atol);
   double gv = 0.0;
   dae::constraint_norms(*problem, lp.t_end, r.q, r.v, r.g_end, gv);

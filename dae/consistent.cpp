@@ -6,7 +6,7 @@
 #include <limits>
 #include <string>
 
-#include "integrators/common.h"
+#include "solver/types.h"
 
 namespace evas::dae {
 

@@ -4,7 +4,8 @@
 // constraint |G v + g_t| (max norms over the m equations).
 #pragma once
 
-#include "integrators/integrator.h"
+#include "integrators/stats.h"
+#include "solver/problem.h"
 
 namespace evas::dae {
 

@@ -20,7 +20,7 @@
 
 #include "dae/consistent.h"
 #include "dae/sparse_util.h"
-#include "integrators/common.h"
+#include "solver/types.h"
 
 namespace evas::dae {
 

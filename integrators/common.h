@@ -42,11 +42,4 @@ class WallTimer {
   std::chrono::steady_clock::time_point start_;
 };
 
-/// A number with enough digits to locate a failure ("0.0123456789").
-inline std::string format_number(double x) {
-  std::ostringstream os;
-  os << std::setprecision(10) << x;
-  return os.str();
-}
-
 }  // namespace evas

@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "integrators/stats.h"
 #include "solver/problem.h"
 
 namespace evas {
@@ -63,28 +64,6 @@ struct IntegratorSettings {
   double baumgarte_beta = 0.0;     ///< index-1: beta^2 g term [1/s]
   double penalty_stiffness = 1e9;  ///< penalty: k (per unit of g) [N/m, N m/rad]
   double penalty_damping = 0.0;    ///< penalty: c (per unit of g') [N s/m]
-};
-
-/// Statistics every run reports.
-struct IntegratorStats {
-  long steps = 0;
-  long residual_evals = 0;  ///< f (or F) evaluations, including those for finite differences
-  long jacobian_evals = 0;
-  long linear_setups = 0;  ///< factorizations
-  long linear_solves = 0;
-  long nonlinear_iterations = 0;
-  long error_test_failures = 0;
-  long convergence_failures = 0;
-  long restarts = 0;        ///< re-initializations at stops that changed the state
-  long refused_states = 0;  ///< trial states an element refused (RangeError), each retried
-  long substeps = 0;  ///< fixed-step methods: steps retried as sub-steps after a failed iteration
-  long max_step_iterations = 0;  ///< fixed-step methods: most iterations taken in one step
-  double wall_seconds = 0.0;
-  double last_step = 0.0;
-  double min_step = 0.0, max_step = 0.0;
-  int last_order = 0;
-  /// Constrained problems: largest |g| and |G v + g_t| seen at the outputs.
-  double max_constraint = 0.0, max_constraint_rate = 0.0;
 };
 
 /// Observer of the accepted steps of a run: called with the time reached and the

@@ -239,25 +239,12 @@ void ResultsWriter::finish(const IntegratorStats& st, const std::string& status)
   const bool ok = write_step([&] {
     h5::Handle g = h5::exists(file_, "stats") ? h5::open_group(file_, "stats")
                                               : h5::create_group(file_, "stats");
-    h5::write_attribute(g, "steps", static_cast<long long>(st.steps));
-    h5::write_attribute(g, "residual_evals", static_cast<long long>(st.residual_evals));
-    h5::write_attribute(g, "jacobian_evals", static_cast<long long>(st.jacobian_evals));
-    h5::write_attribute(g, "linear_setups", static_cast<long long>(st.linear_setups));
-    h5::write_attribute(g, "linear_solves", static_cast<long long>(st.linear_solves));
-    h5::write_attribute(g, "nonlinear_iterations", static_cast<long long>(st.nonlinear_iterations));
-    h5::write_attribute(g, "error_test_failures", static_cast<long long>(st.error_test_failures));
-    h5::write_attribute(g, "convergence_failures", static_cast<long long>(st.convergence_failures));
-    h5::write_attribute(g, "restarts", static_cast<long long>(st.restarts));
-    h5::write_attribute(g, "refused_states", static_cast<long long>(st.refused_states));
-    h5::write_attribute(g, "substeps", static_cast<long long>(st.substeps));
-    h5::write_attribute(g, "max_step_iterations", static_cast<long long>(st.max_step_iterations));
-    h5::write_attribute(g, "wall_seconds", st.wall_seconds);
-    h5::write_attribute(g, "last_step", st.last_step);
-    h5::write_attribute(g, "min_step", st.min_step);
-    h5::write_attribute(g, "max_step", st.max_step);
-    h5::write_attribute(g, "last_order", static_cast<long long>(st.last_order));
-    h5::write_attribute(g, "max_constraint", st.max_constraint);
-    h5::write_attribute(g, "max_constraint_rate", st.max_constraint_rate);
+    for (const StatField& f : stat_fields()) {
+      if (f.integer)
+        h5::write_attribute(g, f.name, static_cast<long long>(f.get(st)));
+      else
+        h5::write_attribute(g, f.name, f.get(st));
+    }
     h5::write_attribute(file_, "status", written_status);
     h5::write_attribute(file_, "rows", static_cast<long long>(written_));
     flush_file(file_);
@@ -344,25 +331,7 @@ void write_summary_json(const std::string& path, const RunSummary& s) {
   // the -march evas was built for (CMakeLists.txt, EVAS_ARCH)
   o << "  \"build_arch\": " << json_string(build_arch()) << ",\n";
   o << "  \"stats\": {\n";
-  o << "    \"steps\": " << st.steps << ",\n";
-  o << "    \"residual_evals\": " << st.residual_evals << ",\n";
-  o << "    \"jacobian_evals\": " << st.jacobian_evals << ",\n";
-  o << "    \"linear_setups\": " << st.linear_setups << ",\n";
-  o << "    \"linear_solves\": " << st.linear_solves << ",\n";
-  o << "    \"nonlinear_iterations\": " << st.nonlinear_iterations << ",\n";
-  o << "    \"error_test_failures\": " << st.error_test_failures << ",\n";
-  o << "    \"convergence_failures\": " << st.convergence_failures << ",\n";
-  o << "    \"restarts\": " << st.restarts << ",\n";
-  o << "    \"refused_states\": " << st.refused_states << ",\n";
-  o << "    \"substeps\": " << st.substeps << ",\n";
-  o << "    \"max_step_iterations\": " << st.max_step_iterations << ",\n";
-  o << "    \"wall_seconds\": " << json_number(st.wall_seconds) << ",\n";
-  o << "    \"last_step\": " << json_number(st.last_step) << ",\n";
-  o << "    \"min_step\": " << json_number(st.min_step) << ",\n";
-  o << "    \"max_step\": " << json_number(st.max_step) << ",\n";
-  o << "    \"last_order\": " << st.last_order << ",\n";
-  o << "    \"max_constraint\": " << json_number(st.max_constraint) << ",\n";
-  o << "    \"max_constraint_rate\": " << json_number(st.max_constraint_rate) << "\n";
+  o << stats_json_members(st, "    ") << "\n";
   o << "  },\n";
   o << "  \"channels\": [";
   for (std::size_t c = 0; c < s.channels.size(); ++c) {

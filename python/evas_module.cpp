@@ -8,7 +8,6 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
-#include <chrono>
 #include <cmath>
 #include <memory>
 #include <string>
@@ -21,6 +20,7 @@
 #include "io/outputs.h"
 #include "io/results.h"
 #include "io/scene.h"
+#include "run/run.h"
 #include "solver/system.h"
 
 namespace py = pybind11;
@@ -181,68 +181,32 @@ class Model {
     for (const auto& kv : settings)
       evas::set_integrator_setting(s, kv.first, py::str(kv.second).cast<std::string>());
     const double tend = t_end.is_none() ? scene_.t_end : t_end.cast<double>();
-    evas::System sys(*scene_.model);
-    evas::OutputSet out(scene_.output, sys, scene_.t_start, tend);
-    std::vector<double> times = out.times(), tout;
-    std::vector<double> rows;
-    Vec row(out.size());
-    auto record = [&](double t, const double* q, const double* v) {
-      out.values(t, q, v, row.data());
-      tout.push_back(t);
-      rows.insert(rows.end(), row.data(), row.data() + row.size());
-    };
-    Vec q0, v0;
-    sys.initial_state(q0, v0);
-    if (sys.constraint_count() > 0) {  // a constrained scene starts consistent, as evas run
-      const evas::dae::ConsistentState cs =
-          evas::dae::consistent_state(sys, scene_.t_start, q0, v0);
-      q0 = cs.q;
-      v0 = cs.v;
-    }
-    evas::start_internal_states(sys, scene_.t_start, q0, v0);
-    if (!times.empty() && times.front() <= scene_.t_start) {
-      record(scene_.t_start, q0.data(), v0.data());
-      times.erase(times.begin());
-    }
-    auto integ = evas::make_integrator(s.name);
-    std::string status = "completed";
+    evas::run::SceneRun sr(scene_, tend);
+    evas::run::MemorySink sink;
+    const std::unique_ptr<evas::Integrator> integ = evas::make_integrator(s.name);
+    evas::run::Outcome o;
     {
       py::gil_scoped_release release;
-      try {
-        integ->init(sys, scene_.t_start, q0, v0, s);
-        evas::integrate(
-            *integ, sys, scene_.t_start, times,
-            [&](double t, const Vec& q, const Vec& v) { record(t, q.data(), v.data()); });
-      } catch (const std::exception& e) {
-        status = std::string("failed: ") + e.what();
-      }
+      o = sr.perform(*integ, s, sink);
     }
-    const evas::IntegratorStats st = integ->stats();
     py::dict stats;
-    stats["steps"] = st.steps;
-    stats["residual_evals"] = st.residual_evals;
-    stats["jacobian_evals"] = st.jacobian_evals;
-    stats["linear_setups"] = st.linear_setups;
-    stats["linear_solves"] = st.linear_solves;
-    stats["nonlinear_iterations"] = st.nonlinear_iterations;
-    stats["error_test_failures"] = st.error_test_failures;
-    stats["convergence_failures"] = st.convergence_failures;
-    stats["wall_seconds"] = st.wall_seconds;
-    stats["min_step"] = st.min_step;
-    stats["max_step"] = st.max_step;
-    stats["max_constraint"] = st.max_constraint;
-    stats["max_constraint_rate"] = st.max_constraint_rate;
-    const long nc = out.size(), nr = static_cast<long>(tout.size());
+    for (const evas::StatField& f : evas::stat_fields()) {
+      if (f.integer)
+        stats[f.name] = static_cast<long long>(f.get(o.stats));
+      else
+        stats[f.name] = f.get(o.stats);
+    }
+    const long nc = sink.width(), nr = static_cast<long>(sink.times().size());
     py::array_t<double> values({nr, nc});
-    std::copy(rows.begin(), rows.end(), values.mutable_data());
+    std::copy(sink.values().begin(), sink.values().end(), values.mutable_data());
     py::dict d;
-    d["time"] = py::array_t<double>(static_cast<long>(tout.size()), tout.data());
+    d["time"] = py::array_t<double>(nr, sink.times().data());
     d["values"] = values;
     std::vector<std::string> names;
-    for (const auto& c : out.channels()) names.push_back(c.name);
+    for (const auto& c : sink.channels()) names.push_back(c.name);
     d["channels"] = names;
     d["stats"] = stats;
-    d["status"] = status;
+    d["status"] = o.status_text();
     d["integrator"] = s.name;
     return d;
   }

@@ -1,6 +1,8 @@
 #include "solver/types.h"
 
 #include <cmath>
+#include <iomanip>
+#include <sstream>
 
 namespace evas {
 
@@ -13,6 +15,12 @@ Mat3 rotation_from_vector(const Vec3& phi) {
 Vec3 vector_from_rotation(const Mat3& R) {
   Eigen::AngleAxisd aa(R);
   return aa.angle() * aa.axis();
+}
+
+std::string format_number(double x) {
+  std::ostringstream os;
+  os << std::setprecision(10) << x;
+  return os.str();
 }
 
 }  // namespace evas

@@ -31,6 +31,9 @@ Mat3 rotation_from_vector(const Vec3& phi);
 /// Rotation vector of a rotation matrix (inverse of rotation_from_vector, |phi| <= pi).
 Vec3 vector_from_rotation(const Mat3& R);
 
+/// A number with enough digits to locate a failure ("0.0123456789").
+std::string format_number(double x);
+
 /// Error raised for bad input: the message names the file, the item and what is wrong.
 class InputError : public std::runtime_error {
  public:

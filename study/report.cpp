@@ -8,31 +8,6 @@
 
 namespace evas::study {
 
-const std::vector<StatField>& stat_fields() {
-  using S = IntegratorStats;
-  static const std::vector<StatField> f = {
-      {"steps", [](const S& s) { return double(s.steps); }, true},
-      {"residual_evals", [](const S& s) { return double(s.residual_evals); }, true},
-      {"jacobian_evals", [](const S& s) { return double(s.jacobian_evals); }, true},
-      {"linear_setups", [](const S& s) { return double(s.linear_setups); }, true},
-      {"linear_solves", [](const S& s) { return double(s.linear_solves); }, true},
-      {"nonlinear_iterations", [](const S& s) { return double(s.nonlinear_iterations); }, true},
-      {"error_test_failures", [](const S& s) { return double(s.error_test_failures); }, true},
-      {"convergence_failures", [](const S& s) { return double(s.convergence_failures); }, true},
-      {"restarts", [](const S& s) { return double(s.restarts); }, true},
-      {"substeps", [](const S& s) { return double(s.substeps); }, true},
-      {"max_step_iterations", [](const S& s) { return double(s.max_step_iterations); }, true},
-      {"wall_seconds", [](const S& s) { return s.wall_seconds; }, false},
-      {"last_step", [](const S& s) { return s.last_step; }, false},
-      {"min_step", [](const S& s) { return s.min_step; }, false},
-      {"max_step", [](const S& s) { return s.max_step; }, false},
-      {"last_order", [](const S& s) { return double(s.last_order); }, true},
-      {"max_constraint", [](const S& s) { return s.max_constraint; }, false},
-      {"max_constraint_rate", [](const S& s) { return s.max_constraint_rate; }, false},
-  };
-  return f;
-}
-
 std::string csv_field(const std::string& s) {
   if (s.find_first_of(",\"\n\r") == std::string::npos) return s;
   std::string out = "\"";

@@ -1,23 +1,14 @@
 // Output helpers of the studies: CSV/Markdown cells, atomic file writes,
-// number formats, the integrator-statistics columns and gnuplot.
+// number formats and gnuplot.
 #pragma once
 
 #include <filesystem>
 #include <string>
 #include <vector>
 
-#include "integrators/integrator.h"
+#include "solver/types.h"
 
 namespace evas::study {
-
-/// One integrator statistic as a table column.
-struct StatField {
-  std::string name;
-  double (*get)(const IntegratorStats&);
-  bool integer;
-};
-/// Every IntegratorStats field, in declaration order.
-const std::vector<StatField>& stat_fields();
 
 /// A CSV field (quoted when it holds a comma, quote or line break).
 std::string csv_field(const std::string& s);

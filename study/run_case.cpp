@@ -1,12 +1,8 @@
 // One run of a study case (run_case.h).
 #include "study/run_case.h"
 
-#include <chrono>
-#include <cmath>
-#include <memory>
-
-#include "dae/consistent.h"
 #include "io/outputs.h"
+#include "run/run.h"
 #include "solver/system.h"
 #include "study/report.h"
 
@@ -37,70 +33,64 @@ SceneInfo probe_scene(const SceneSource& src) {
   return info;
 }
 
+namespace {
+
+// The chosen channels of every row, the crank angle of each row, and the
+// study's check and stop request.
+class CaseSink : public run::RowSink {
+ public:
+  CaseSink(const std::vector<int>& channels, int crank, const RowCheck& check,
+           const std::function<bool()>& stop, RunData& d)
+      : channels_(channels), crank_(crank), check_(check), stop_(stop), d_(d) {
+    sel_.resize(channels.size());
+  }
+  void begin(const std::vector<Channel>&, const Integrator&) override {}
+  void between_steps(double t, double) override {
+    if (stop_ && stop_()) throw RunError("interrupted at t = " + std::to_string(t) + " s");
+  }
+  void row(double t, const double* values) override {
+    for (std::size_t k = 0; k < channels_.size(); ++k) sel_[k] = values[channels_[k]];
+    d_.time.push_back(t);
+    if (crank_ >= 0) d_.crank.push_back(values[crank_]);
+    rows_.insert(rows_.end(), sel_.begin(), sel_.end());
+    if (check_) check_(t, sel_.data());
+  }
+  const std::vector<double>& rows() const { return rows_; }
+
+ private:
+  const std::vector<int>& channels_;
+  int crank_;
+  const RowCheck& check_;
+  const std::function<bool()>& stop_;
+  RunData& d_;
+  std::vector<double> sel_, rows_;  // rows_: row-major, channels.size() per row
+};
+
+}  // namespace
+
 RunData run_case(const SceneSource& src, const IntegratorSettings& settings,
                  const std::vector<int>& channels, const RowCheck& check,
                  const std::function<bool()>& stop) {
   RunData d;
-  std::unique_ptr<Integrator> integ;
-  std::vector<double> rows;  // row-major, channels.size() per row
-  std::chrono::steady_clock::time_point t0;
-  bool timing = false;
+  std::vector<double> rows;
   try {
     Scene scene = src.parse();
-    System sys(*scene.model);
-    OutputSet out(scene.output, sys, scene.t_start, scene.t_end);
+    run::SceneRun sr(scene, scene.t_end);
     int crank = -1;
     if (scene.output.grid == "crank-angle")
-      for (int i = 0; i < out.size(); ++i)
-        if (out.channels()[static_cast<std::size_t>(i)].name == "crank_angle") crank = i;
-    std::vector<double> row(static_cast<std::size_t>(out.size()));
-    std::vector<double> sel(channels.size());
-    auto record = [&](double t, const double* q, const double* v) {
-      out.values(t, q, v, row.data());
-      for (std::size_t k = 0; k < channels.size(); ++k) {
-        sel[k] = row[static_cast<std::size_t>(channels[k])];
-        if (!std::isfinite(sel[k]))
-          throw RunError("channel '" + out.channels()[static_cast<std::size_t>(channels[k])].name +
-                         "' is not finite at t = " + std::to_string(t) + " s");
-      }
-      d.time.push_back(t);
-      if (crank >= 0) d.crank.push_back(row[static_cast<std::size_t>(crank)]);
-      rows.insert(rows.end(), sel.begin(), sel.end());
-      if (check) check(t, sel.data());
-    };
-    integ = make_integrator(settings.name);
-    if (stop)
-      integ->set_step_monitor([&stop](double t, double) {
-        if (stop()) throw RunError("interrupted at t = " + std::to_string(t) + " s");
-      });
-    Vec q0, v0;
-    sys.initial_state(q0, v0);
-    if (sys.constraint_count() > 0) {  // a constrained scene starts consistent (evas run too)
-      const dae::ConsistentState cs = dae::consistent_state(sys, scene.t_start, q0, v0);
-      q0 = cs.q;
-      v0 = cs.v;
-    }
-    start_internal_states(sys, scene.t_start, q0, v0);
-    std::vector<double> times = out.times();
-    t0 = std::chrono::steady_clock::now();
-    timing = true;
-    const double eps = 1e-12 * std::max(1.0, std::abs(scene.t_start));
-    if (!times.empty() && times.front() <= scene.t_start + eps) {
-      record(scene.t_start, q0.data(), v0.data());
-      times.erase(times.begin());
-    }
-    integ->init(sys, scene.t_start, q0, v0, settings);
-    integrate(*integ, sys, scene.t_start, times,
-              [&](double t, const Vec& q, const Vec& v) { record(t, q.data(), v.data()); });
-    d.wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    d.status = "completed";
+      for (int i = 0; i < sr.outputs().size(); ++i)
+        if (sr.outputs().channels()[static_cast<std::size_t>(i)].name == "crank_angle") crank = i;
+    CaseSink sink(channels, crank, check, stop, d);
+    const run::Outcome o = sr.perform(settings, sink);
+    d.status = o.completed() ? "completed" : "failed";
+    d.message = o.message;
+    d.stats = o.stats;
+    d.wall = o.wall;
+    rows = sink.rows();
   } catch (const std::exception& e) {
     d.status = "failed";
     d.message = e.what();
-    if (timing)
-      d.wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   }
-  if (integ) d.stats = integ->stats();
   const long nr = d.rows();
   const long nc = static_cast<long>(channels.size());
   d.y.resize(nr, nc);

@@ -294,9 +294,10 @@ std::vector<Column> case_columns(const std::vector<CaseResult>& rows) {
   num("wall", "wall", Column::Kind::Real, [](const CaseResult& r) { return r.wall; });
   num("rows", "rows", Column::Kind::Integer, [](const CaseResult& r) { return double(r.rows); });
   for (const auto& f : stat_fields()) {
-    const std::string name = keys.count(f.name) ? f.name + "_taken" : f.name;
+    const std::string name = keys.count(f.name) ? std::string(f.name) + "_taken" : f.name;
     const auto get = f.get;
-    num(name, "stats/" + f.name, f.integer ? Column::Kind::Integer : Column::Kind::Real,
+    num(name, std::string("stats/") + f.name,
+        f.integer ? Column::Kind::Integer : Column::Kind::Real,
         [get](const CaseResult& r) { return r.status == "not run" ? kNaN : get(r.stats); });
   }
   return cols;
