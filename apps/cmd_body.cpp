@@ -6,9 +6,9 @@
 #include <iostream>
 
 #include "apps/commands.h"
+#include "bodies/body_builder.h"
+#include "bodies/truss.h"
 #include "io/body_file.h"
-#include "solver/body_builder.h"
-#include "solver/truss.h"
 
 namespace evas::cli {
 

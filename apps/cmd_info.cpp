@@ -8,11 +8,11 @@
 #include <set>
 
 #include "apps/commands.h"
+#include "bodies/modal_contract.h"
+#include "bodies/reduce_body.h"
 #include "io/body_file.h"
-#include "solver/invariants.h"
-#include "solver/modal_contract.h"
-#include "solver/model.h"
-#include "solver/reduce_body.h"
+#include "model/invariants.h"
+#include "model/model.h"
 
 namespace evas::cli {
 

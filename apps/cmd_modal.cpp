@@ -6,11 +6,11 @@
 #include <iostream>
 
 #include "apps/commands.h"
+#include "bodies/body_builder.h"
+#include "bodies/reduce_body.h"
 #include "io/body_file.h"
 #include "io/calculix.h"
 #include "io/fe_pipeline.h"
-#include "solver/body_builder.h"
-#include "solver/reduce_body.h"
 
 namespace evas::cli {
 

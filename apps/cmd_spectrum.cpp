@@ -6,8 +6,8 @@
 
 #include "apps/commands.h"
 #include "io/results.h"
+#include "model/types.h"
 #include "post/order_spectrum.h"
-#include "solver/types.h"
 
 namespace evas::cli {
 

@@ -6,7 +6,7 @@
 
 #include "apps/commands.h"
 #include "integrators/plugin.h"
-#include "solver/types.h"
+#include "model/types.h"
 
 namespace {
 

@@ -6,7 +6,7 @@
 #include <string>
 
 #include "integrators/integrator.h"
-#include "solver/model.h"
+#include "model/model.h"
 
 namespace evas {
 

@@ -3,8 +3,9 @@
 # layer up to one it may not use stops the configuration with the file, the
 # line and the rule, so the build enforces the layering.
 #
-#   evas_add_layers(PREFIX)   defines PREFIX_model, PREFIX_bodies, ... and
-#                             PREFIX_all (every layer); EVAS_ROOT is the source tree.
+#   evas_add_layers(PREFIX)   defines the static libraries PREFIX_model,
+#                             PREFIX_bodies, ... and sets EVAS_LAYER_TARGETS to
+#                             their names; EVAS_ROOT is the source tree.
 # Used by the top-level CMakeLists.txt and by fuzz/CMakeLists.txt (the sanitized
 # build of the same layers).
 
@@ -66,9 +67,13 @@ function(_evas_check_layer_includes layer)
       list(FIND EVAS_LAYER_DEPS_${layer} ${used} allowed)
       if(is_layer GREATER -1 AND allowed EQUAL -1)
         file(RELATIVE_PATH rel ${EVAS_ROOT} ${f})
+        set(below "${EVAS_LAYER_DEPS_${layer}}")
+        if(NOT below)
+          set(below "no other layer")
+        endif()
         message(FATAL_ERROR
                 "${rel}: '${line}' runs from the layer '${layer}' to '${used}', which it may not "
-                "use (it may use: ${EVAS_LAYER_DEPS_${layer}}; cmake/evas_layers.cmake, "
+                "use (it may use: ${below}; cmake/evas_layers.cmake, "
                 "docs/architecture.md)")
       endif()
     endforeach()
@@ -77,7 +82,7 @@ endfunction()
 
 function(evas_add_layers prefix)
   _evas_layer_closure()
-  add_library(${prefix}_all INTERFACE)
+  set(targets "")
   foreach(entry ${EVAS_LAYERS})
     string(REGEX REPLACE ":.*" "" layer "${entry}")
     _evas_check_layer_includes(${layer})
@@ -86,6 +91,7 @@ function(evas_add_layers prefix)
     foreach(d ${EVAS_LAYER_DIRECT_${layer}})
       target_link_libraries(${prefix}_${layer} PUBLIC ${prefix}_${d})
     endforeach()
-    target_link_libraries(${prefix}_all INTERFACE ${prefix}_${layer})
+    list(APPEND targets ${prefix}_${layer})
   endforeach()
+  set(EVAS_LAYER_TARGETS ${targets} PARENT_SCOPE)
 endfunction()

@@ -6,7 +6,7 @@
 #include <limits>
 #include <string>
 
-#include "solver/types.h"
+#include "model/types.h"
 
 namespace evas::dae {
 

@@ -15,7 +15,7 @@
 // Without constraints only step 3 remains: a = -M^-1 f (a = -f when M = I).
 #pragma once
 
-#include "solver/problem.h"
+#include "model/problem.h"
 
 namespace evas::dae {
 

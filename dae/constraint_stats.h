@@ -4,8 +4,8 @@
 // constraint |G v + g_t| (max norms over the m equations).
 #pragma once
 
-#include "integrators/stats.h"
-#include "solver/problem.h"
+#include "model/problem.h"
+#include "model/stats.h"
 
 namespace evas::dae {
 

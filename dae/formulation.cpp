@@ -20,7 +20,7 @@
 
 #include "dae/consistent.h"
 #include "dae/sparse_util.h"
-#include "solver/types.h"
+#include "model/types.h"
 
 namespace evas::dae {
 

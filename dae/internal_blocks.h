@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "dae/sparse_util.h"
-#include "solver/problem.h"
+#include "model/problem.h"
 
 namespace evas::dae {
 

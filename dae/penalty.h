@@ -17,7 +17,7 @@
 #include <utility>
 #include <vector>
 
-#include "solver/problem.h"
+#include "model/problem.h"
 
 namespace evas::dae {
 

@@ -6,7 +6,7 @@
 #include <stdexcept>
 #include <vector>
 
-#include "solver/types.h"
+#include "model/types.h"
 
 namespace evas::dae {
 

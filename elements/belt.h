@@ -33,8 +33,8 @@
 // du/dc_j = (du/dd) P = -du/dc_i; the plane (n) is held fixed.
 #pragma once
 
-#include "elements/element.h"
 #include "elements/registry.h"
+#include "model/element.h"
 
 namespace evas {
 

@@ -35,9 +35,9 @@
 
 #include <array>
 
-#include "elements/element.h"
 #include "elements/force_law.h"
 #include "elements/registry.h"
+#include "model/element.h"
 
 namespace evas {
 

@@ -38,7 +38,7 @@
 #include <string>
 #include <vector>
 
-#include "solver/types.h"
+#include "model/types.h"
 
 namespace evas {
 

@@ -40,8 +40,8 @@
 
 #include <array>
 
-#include "elements/element.h"
 #include "elements/registry.h"
+#include "model/element.h"
 
 namespace evas {
 

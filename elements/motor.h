@@ -32,8 +32,8 @@
 // quasi-static disk, whose torque is Eq. 5's times K_c / (K_r + K_c).
 #pragma once
 
-#include "elements/element.h"
 #include "elements/registry.h"
+#include "model/element.h"
 
 namespace evas {
 

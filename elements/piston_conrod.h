@@ -45,9 +45,9 @@
 
 #include <memory>
 
-#include "elements/element.h"
 #include "elements/gas_pressure.h"
 #include "elements/registry.h"
+#include "model/element.h"
 
 namespace evas {
 

@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "elements/element.h"
+#include "model/element.h"
 
 namespace evas {
 

@@ -12,7 +12,7 @@
 // derivatives (R_E varies only with the LOF spin, which is prescribed).
 #pragma once
 
-#include "elements/element.h"
+#include "model/element.h"
 
 namespace evas {
 

@@ -19,9 +19,9 @@
 // sides of the gap edges and continuous across them when smoothing > 0.
 #pragma once
 
-#include "elements/element.h"
 #include "elements/force_law.h"
 #include "elements/registry.h"
+#include "model/element.h"
 
 namespace evas {
 

@@ -23,7 +23,7 @@
 #include <string>
 #include <vector>
 
-#include "solver/types.h"
+#include "model/types.h"
 
 namespace evas_fuzz {
 

@@ -10,7 +10,7 @@
 
 #include <vector>
 
-#include "solver/types.h"
+#include "model/types.h"
 
 namespace evas {
 

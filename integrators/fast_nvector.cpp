@@ -10,7 +10,7 @@
 
 #include <cmath>
 
-#include "solver/types.h"
+#include "model/types.h"
 
 namespace evas::sundials {
 namespace {

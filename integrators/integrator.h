@@ -18,8 +18,8 @@
 #include <string>
 #include <vector>
 
-#include "integrators/stats.h"
-#include "solver/problem.h"
+#include "model/problem.h"
+#include "model/stats.h"
 
 namespace evas {
 

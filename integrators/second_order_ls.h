@@ -22,7 +22,7 @@
 #include <memory>
 
 #include "integrators/dense_inverse.h"
-#include "solver/types.h"
+#include "model/types.h"
 
 struct _generic_SUNMatrix;
 struct _generic_SUNLinearSolver;

@@ -8,7 +8,7 @@
 #include <optional>
 
 #include "io/hdf5_util.h"
-#include "solver/invariants.h"
+#include "model/invariants.h"
 
 namespace evas {
 

@@ -16,7 +16,7 @@
 
 #include <string>
 
-#include "solver/modal_body.h"
+#include "model/modal_body.h"
 
 namespace evas {
 

@@ -17,9 +17,9 @@
 #include <string>
 #include <vector>
 
-#include "solver/body_builder.h"
-#include "solver/modal_body.h"
-#include "solver/truss.h"
+#include "bodies/body_builder.h"
+#include "bodies/truss.h"
+#include "model/modal_body.h"
 
 namespace evas {
 

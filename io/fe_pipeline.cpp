@@ -15,7 +15,7 @@
 #include <set>
 #include <sstream>
 
-#include "solver/interface_modes.h"
+#include "bodies/interface_modes.h"
 
 namespace evas {
 

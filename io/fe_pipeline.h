@@ -10,9 +10,9 @@
 #include <string>
 #include <vector>
 
+#include "bodies/body_builder.h"
+#include "bodies/reduce_body.h"
 #include "io/calculix.h"
-#include "solver/body_builder.h"
-#include "solver/reduce_body.h"
 
 namespace evas {
 

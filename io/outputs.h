@@ -18,8 +18,8 @@
 
 #include <vector>
 
-#include "elements/element.h"
 #include "io/scene.h"
+#include "model/element.h"
 #include "solver/system.h"
 
 namespace evas {

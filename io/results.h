@@ -21,10 +21,10 @@
 #include <string>
 #include <vector>
 
-#include "elements/element.h"
 #include "integrators/integrator.h"
 #include "io/hdf5_util.h"
 #include "io/write_guard.h"
+#include "model/element.h"
 
 namespace evas {
 

@@ -9,7 +9,7 @@
 #include <cstring>
 #include <ctime>
 
-#include "solver/types.h"
+#include "model/types.h"
 
 namespace evas {
 

@@ -12,15 +12,15 @@
 #include <set>
 #include <sstream>
 
+#include "bodies/body_builder.h"
+#include "bodies/cylinder_fit.h"
+#include "bodies/modal_contract.h"
+#include "bodies/truss.h"
 #include "elements/registry.h"
 #include "integrators/settings.h"
 #include "io/body_file.h"
 #include "io/outputs.h"
-#include "solver/body_builder.h"
-#include "solver/cylinder_fit.h"
-#include "solver/modal_contract.h"
 #include "solver/system.h"
-#include "solver/truss.h"
 
 namespace evas {
 

@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "integrators/integrator.h"
-#include "solver/model.h"
+#include "model/model.h"
 
 namespace evas {
 

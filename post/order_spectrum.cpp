@@ -3,7 +3,7 @@
 #include <cmath>
 #include <string>
 
-#include "solver/types.h"
+#include "model/types.h"
 
 namespace evas {
 

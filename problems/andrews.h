@@ -13,7 +13,7 @@
 // set's consistent position at rest.
 #pragma once
 
-#include "solver/problem.h"
+#include "model/problem.h"
 
 namespace evas::problems {
 

@@ -16,7 +16,7 @@
 // start (0, 1/2, 1, 1/2), velocities (-1/2, 0, -1/2, 0) (consistent).
 #pragma once
 
-#include "solver/problem.h"
+#include "model/problem.h"
 
 namespace evas::problems {
 

@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "solver/problem.h"
+#include "model/problem.h"
 
 namespace evas::problems {
 

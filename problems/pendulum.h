@@ -22,7 +22,7 @@
 // lambda = 0 holds as it stands and has_mass() is false).
 #pragma once
 
-#include "solver/problem.h"
+#include "model/problem.h"
 
 namespace evas::problems {
 

@@ -9,7 +9,7 @@
 #include <csignal>
 #include <string>
 
-#include "solver/types.h"
+#include "model/types.h"
 
 namespace evas::run {
 

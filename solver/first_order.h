@@ -16,7 +16,7 @@
 #include <vector>
 
 #include "dae/internal_blocks.h"
-#include "solver/problem.h"
+#include "model/problem.h"
 
 namespace evas {
 

@@ -22,9 +22,9 @@
 #include <limits>
 #include <vector>
 
-#include "solver/joint.h"
-#include "solver/model.h"
-#include "solver/problem.h"
+#include "model/joint.h"
+#include "model/model.h"
+#include "model/problem.h"
 
 namespace evas {
 

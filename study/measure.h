@@ -17,8 +17,8 @@
 #include <string>
 #include <vector>
 
-#include "elements/element.h"
-#include "solver/types.h"
+#include "model/element.h"
+#include "model/types.h"
 
 namespace evas::study {
 

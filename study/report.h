@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "solver/types.h"
+#include "model/types.h"
 
 namespace evas::study {
 

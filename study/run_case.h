@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "elements/element.h"
 #include "integrators/integrator.h"
+#include "model/element.h"
 #include "study/scene_edit.h"
 
 namespace evas::study {

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "solver/modal_body.h"
+#include "model/modal_body.h"
 
 namespace evas::test_bodies {
 

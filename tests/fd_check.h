@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <iostream>
 
-#include "solver/problem.h"
+#include "model/problem.h"
 
 namespace evas::test_fd {
 

@@ -4,7 +4,7 @@
 
 #include <random>
 
-#include "solver/modal_body.h"
+#include "model/modal_body.h"
 
 namespace evas::test_bodies {
 

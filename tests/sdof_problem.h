@@ -23,7 +23,7 @@
 #include <string>
 #include <vector>
 
-#include "solver/problem.h"
+#include "model/problem.h"
 
 namespace evas {
 namespace test {

@@ -22,12 +22,12 @@
 #include <sstream>
 #include <thread>
 
+#include "bodies/body_builder.h"
+#include "bodies/reduce_body.h"
+#include "bodies/truss.h"
 #include "io/body_file.h"
 #include "io/hdf5_util.h"
-#include "solver/body_builder.h"
-#include "solver/invariants.h"
-#include "solver/reduce_body.h"
-#include "solver/truss.h"
+#include "model/invariants.h"
 
 using namespace evas;
 namespace fs = std::filesystem;

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "solver/body_builder.h"
+#include "bodies/body_builder.h"
 
 using namespace evas;
 

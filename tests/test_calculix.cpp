@@ -12,10 +12,10 @@
 #include <filesystem>
 #include <fstream>
 
+#include "bodies/body_builder.h"
 #include "fe_fixture.h"
 #include "io/calculix.h"
 #include "io/fe_pipeline.h"
-#include "solver/body_builder.h"
 
 using namespace evas;
 namespace fs = std::filesystem;

@@ -8,10 +8,10 @@
 
 #include <cmath>
 
+#include "bodies/body_builder.h"
 #include "elements/spring_damper.h"
 #include "integrators/integrator.h"
 #include "random_body.h"
-#include "solver/body_builder.h"
 #include "solver/system.h"
 
 using namespace evas;

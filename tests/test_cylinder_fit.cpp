@@ -8,8 +8,8 @@
 #include <cmath>
 #include <random>
 
+#include "bodies/cylinder_fit.h"
 #include "io/body_file.h"
-#include "solver/cylinder_fit.h"
 
 using namespace evas;
 

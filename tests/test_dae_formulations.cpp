@@ -15,8 +15,8 @@
 #include "dae/formulation.h"
 #include "dae/penalty.h"
 #include "fd_check.h"
+#include "model/types.h"
 #include "problems/pendulum.h"
-#include "solver/types.h"
 
 namespace evas {
 namespace {

@@ -20,11 +20,11 @@
 #include <cstdio>
 #include <string>
 
+#include "bodies/body_builder.h"
 #include "fe_fixture.h"
 #include "io/calculix.h"
 #include "io/fe_pipeline.h"
-#include "solver/body_builder.h"
-#include "solver/modal_body.h"
+#include "model/modal_body.h"
 
 using namespace evas;
 

@@ -11,10 +11,10 @@
 #include <cstdlib>
 #include <filesystem>
 
+#include "bodies/body_builder.h"
 #include "fe_fixture.h"
 #include "io/fe_pipeline.h"
-#include "solver/body_builder.h"
-#include "solver/modal_body.h"
+#include "model/modal_body.h"
 
 using namespace evas;
 namespace fs = std::filesystem;

@@ -22,9 +22,9 @@
 #include <cstdio>
 #include <vector>
 
-#include "solver/body_builder.h"
-#include "solver/interface_modes.h"
-#include "solver/reduce_body.h"
+#include "bodies/body_builder.h"
+#include "bodies/interface_modes.h"
+#include "bodies/reduce_body.h"
 
 using namespace evas;
 

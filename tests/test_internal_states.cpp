@@ -27,9 +27,9 @@
 
 #include "dae/formulation.h"
 #include "integrators/integrator.h"
+#include "model/model.h"
 #include "random_body.h"
 #include "solver/first_order.h"
-#include "solver/model.h"
 #include "solver/system.h"
 
 namespace evas {

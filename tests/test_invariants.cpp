@@ -2,8 +2,8 @@
 // paper's literal sums over the nodes, and the identities the invariants obey.
 #include <gtest/gtest.h>
 
+#include "model/invariants.h"
 #include "random_body.h"
-#include "solver/invariants.h"
 
 using namespace evas;
 

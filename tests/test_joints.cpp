@@ -18,8 +18,8 @@
 
 #include "integrators/integrator.h"
 #include "integrators/settings.h"
+#include "model/model.h"
 #include "random_body.h"
-#include "solver/model.h"
 #include "solver/system.h"
 
 namespace evas {

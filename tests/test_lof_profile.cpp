@@ -3,7 +3,7 @@
 // integrators their order — found in review), monotone between knots.
 #include <gtest/gtest.h>
 
-#include "solver/lof.h"
+#include "model/lof.h"
 
 using namespace evas;
 

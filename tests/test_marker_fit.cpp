@@ -12,7 +12,7 @@
 #include <sstream>
 
 #include "io/scene.h"
-#include "solver/model.h"
+#include "model/model.h"
 
 using namespace evas;
 

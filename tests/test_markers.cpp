@@ -4,9 +4,9 @@
 #include <gtest/gtest.h>
 
 #include "elements/spring_damper.h"
+#include "model/marker.h"
+#include "model/model.h"
 #include "random_body.h"
-#include "solver/marker.h"
-#include "solver/model.h"
 
 using namespace evas;
 

@@ -17,9 +17,9 @@
 
 #include "integrators/integrator.h"
 #include "integrators/settings.h"
+#include "model/model.h"
 #include "problems/pendulum.h"
 #include "random_body.h"
-#include "solver/model.h"
 #include "solver/system.h"
 
 namespace evas {

@@ -6,8 +6,8 @@
 
 #include <cmath>
 
+#include "model/types.h"
 #include "post/order_spectrum.h"
-#include "solver/types.h"
 
 using namespace evas;
 

@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "bodies/reduce_body.h"
 #include "elements/spring_damper.h"
 #include "fe_fixture.h"
 #include "integrators/integrator.h"
@@ -18,7 +19,6 @@
 #include "io/hdf5_util.h"
 #include "io/scene.h"
 #include "random_body.h"
-#include "solver/reduce_body.h"
 #include "solver/system.h"
 
 using namespace evas;

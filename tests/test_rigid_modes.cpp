@@ -2,8 +2,8 @@
 // (formulation.md s. 2: explicit mass-orthonormal rigid basis).
 #include <gtest/gtest.h>
 
+#include "model/invariants.h"
 #include "random_body.h"
-#include "solver/invariants.h"
 
 using namespace evas;
 

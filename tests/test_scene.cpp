@@ -6,12 +6,12 @@
 #include <filesystem>
 #include <fstream>
 
+#include "bodies/body_builder.h"
+#include "bodies/truss.h"
 #include "io/body_file.h"
 #include "io/outputs.h"
 #include "io/scene.h"
-#include "solver/body_builder.h"
 #include "solver/system.h"
-#include "solver/truss.h"
 
 using namespace evas;
 

@@ -17,14 +17,14 @@
 #include <fstream>
 #include <sstream>
 
+#include "bodies/truss.h"
 #include "integrators/settings.h"
 #include "io/hdf5_util.h"
 #include "io/outputs.h"
 #include "io/results.h"
 #include "io/scene.h"
-#include "solver/modal_body.h"
+#include "model/modal_body.h"
 #include "solver/system.h"
-#include "solver/truss.h"
 #include "study/study.h"
 
 using namespace evas;

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <iostream>
 
-#include "solver/truss.h"
+#include "bodies/truss.h"
 
 using namespace evas;
 

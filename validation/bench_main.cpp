@@ -24,7 +24,7 @@
 #include "elements/spring_damper.h"
 #include "integrators/integrator.h"
 #include "io/results.h"
-#include "solver/invariants.h"
+#include "model/invariants.h"
 #include "solver/system.h"
 
 using namespace evas;
