@@ -111,6 +111,23 @@ class System : public Problem {
     Mat3 R_axes;              // the frame's rotation the marker axes axes_ were formed at
     bool axes_built = false, axes_current = false;
   };
+  // ---- Construction (solver/system.cpp): the constructor calls these in this order ----
+  /// lof_ and bwork_ (per body the frame state and the frame terms f0, KW, G).
+  void setup_body_work();
+  /// Per marker: motion_ (the constant motion of the ground markers), axes_ and
+  /// the maps Lm_, Pq_, Pv_.
+  void setup_marker_work();
+  /// mrow_ and per body the stacked marker maps bstack_, bstackT_ with bq_, bv_, bload_.
+  void setup_body_stacks();
+  /// ework_, pairs_, pair_index_ and the inertial elements (inertial_, piecewise_,
+  /// rank_); marks in `pair` ([bi * nb + bj]) the body pairs an element couples.
+  void setup_element_work(std::vector<char>& pair);
+  /// rank_ > 0: adds to `pair` the blocks M^-1 K fills; sizes U_, W_, Z_, WtA_, f0_,
+  /// y_, lu_.
+  void setup_inertial_work(std::vector<char>& pair);
+  /// pattern_ and block_start_ from the body pairs `pair` (solver/system_jacobian.cpp).
+  void build_pattern(const std::vector<char>& pair);
+
   void update_lof(double t);
   void force_impl(double t, const double* q, const double* v, double* f, bool reads_only = false);
   /// rset_, unread_ from the elements' motion_reads(); timed_, lset_, tset_ from
@@ -168,6 +185,12 @@ class System : public Problem {
   /// Inertial elements: f_0 -> M^-1 f_0; leaves their ElementWork::motion at the
   /// solved accelerations and U_, W_, lu_ for apply_inverse_mass().
   void solve_inertia(double t, double* f);
+  /// solve_inertia(), one pass: the inertial elements' loads at the accelerations
+  /// of qdd = 0 into f, and their U_, W_ (zeroed by the caller).
+  void add_inertial_loads(double t, double* f);
+  /// solve_inertia(): each inertial element's accelerations from the solved f
+  /// (qdd = -f) become its linearisation point; returns the largest change.
+  double relinearise_inertia(const double* f);
   void apply_inverse_mass(SpMat& A);
   static void add_rotation_correction(const Body& B, const Vec3& w_L, const Vec3& al_L, Mat& KW);
   void marker_maps(int marker);
@@ -257,6 +280,12 @@ class System : public Problem {
   /// force_jacobian() (comb null: K and C) or, with comb = (ck, cc), ck K + cc C
   /// into K alone (C unused).
   void jacobian(double t, const double* q, const double* v, const double* comb, SpMat& K, SpMat* C);
+  /// jacobian(): D of element e (not of time alone) at the current motions.
+  void element_derivatives(std::size_t e, double t);
+  /// jacobian(): element e's D_ij added to the Y of its body pairs (comb as jacobian()).
+  void add_element_pairs(std::size_t e, const double* comb);
+  /// jacobian(): the pair blocks -Bc^T Y added to K (and C; comb as jacobian()).
+  void add_pair_blocks(const double* comb, SpMat& K, SpMat* C);
   std::vector<PairWork> pairs_;
   std::vector<int> pair_index_;  // [bi * nb + bj] -> index in pairs_, -1 if none
   // block_start_[bi * nb + bj][c]: value index of the first row of body bi in

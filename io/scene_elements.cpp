@@ -1,0 +1,111 @@
+// Scene files (see scene.h): elements, their markers and their parameters,
+// read through the element registry (elements/registry.h).
+#include <algorithm>
+#include <filesystem>
+
+#include "elements/registry.h"
+#include "io/scene_reader.h"
+
+namespace evas::scene_detail {
+
+void SceneReader::read_element(const Node& e, std::size_t i, Model& model) {
+  std::string item = "elements[" + std::to_string(i) + "]";
+  expect_map(e, item);
+  const std::string name = text(require(e, "name", item), item, "name");
+  item = "element '" + name + "'";
+  for (const auto& other : model.elements())
+    if (other->name() == name)
+      fail(e["name"], item, "an element with this name is already defined");
+  const Node type_node = require(e, "type", item);
+  const ElementType* type = nullptr;
+  try {
+    type = &element_type(text(type_node, item, "type"));
+  } catch (const InputError& err) {
+    const std::string msg = err.what();
+    if (msg.rfind(file_ + ":", 0) == 0) throw;
+    fail(type_node, item, msg);
+  }
+  std::vector<std::string> known = {"name", "type", "markers"};
+  for (const auto& p : type->params) known.push_back(p.key);
+  check_keys(e, item, known);
+
+  const Node markers = require(e, "markers", item);
+  if (!markers.IsSequence())
+    fail(markers, item, "'markers' must be a list of marker names" + got(markers));
+  check_size(markers, item, "markers", kMaxSceneItems);
+  if (type->num_markers > 0 && static_cast<int>(markers.size()) != type->num_markers)
+    fail(markers, item,
+         "type '" + type->type + "' needs " + std::to_string(type->num_markers) + " markers, got " +
+             std::to_string(markers.size()));
+  if (type->num_markers <= 0 && markers.size() < 2)
+    fail(markers, item,
+         "type '" + type->type + "' needs two or more markers, got " +
+             std::to_string(markers.size()));
+  std::vector<int> idx;
+  for (const Node& mk : markers) {
+    const std::string mname = text(mk, item, "markers");
+    int found = -1;
+    std::vector<std::string> names;
+    for (std::size_t k = 0; k < model.markers().size(); ++k) {
+      names.push_back(model.markers()[k].name);
+      if (model.markers()[k].name == mname) found = static_cast<int>(k);
+    }
+    if (found < 0) fail(mk, item, "no marker named '" + mname + "' (known: " + join(names) + ")");
+    idx.push_back(found);
+  }
+
+  ParamValues values;
+  for (const ParamSpec& spec : type->params) {
+    const Node v = e[spec.key];
+    if (!v) continue;
+    const std::string where = file_ + ":" + std::to_string(v.Mark().line + 1) + ": " + item;
+    const std::string head = "parameter '" + spec.key + "'";
+    if (spec.kind == ParamSpec::Kind::Text) {
+      if (!v.IsScalar()) fail(v, item, head + " must be text" + got(v));
+      if (!spec.choices.empty() &&
+          std::find(spec.choices.begin(), spec.choices.end(), v.Scalar()) == spec.choices.end())
+        fail(v, item, head + " is '" + v.Scalar() + "', expected one of: " + join(spec.choices));
+      std::string value = v.Scalar();
+      if (spec.is_path && !value.empty() && std::filesystem::path(value).is_relative())
+        value = (dir_ / value).string();  // paths are relative to the scene file
+      values.texts[spec.key] = value;
+      continue;
+    }
+    std::vector<double> x;
+    auto push = [&](const Node& s) {
+      double d = 0.0;
+      if (!s.IsScalar() || !YAML::convert<double>::decode(s, d))
+        fail(s, item, head + " must be numbers" + got(s));
+      x.push_back(d);
+    };
+    if (v.IsScalar()) {
+      push(v);
+    } else if (v.IsSequence()) {
+      check_size(v, item, spec.key);
+      for (const Node& s : v) {
+        check_size(s, item, spec.key);
+        if (s.IsSequence() && spec.kind == ParamSpec::Kind::List) {
+          for (const Node& ss : s) push(ss);  // tables: rows flattened
+        } else {
+          push(s);
+        }
+      }
+    } else {
+      fail(v, item,
+           head + " must be " +
+               (spec.kind == ParamSpec::Kind::Scalar ? "a number" : "a list of numbers") + got(v));
+    }
+    check_param(spec, x, where);
+    values.numbers[spec.key] = x;
+  }
+  try {
+    complete_params(*type, values, file_ + ":" + std::to_string(e.Mark().line + 1) + ": " + item);
+    model.add_element(type->make(name, idx, values));
+  } catch (const InputError& err) {
+    const std::string msg = err.what();
+    if (msg.rfind(file_ + ":", 0) == 0) throw;
+    rethrow(e, item, err);
+  }
+}
+
+}  // namespace evas::scene_detail

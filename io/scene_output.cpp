@@ -1,0 +1,142 @@
+// Scene files (see scene.h): the integrator block (integrators/settings.h)
+// and the output spec (grid, step, start, channels).
+#include <cmath>
+#include <map>
+
+#include "integrators/settings.h"
+#include "io/outputs.h"
+#include "io/scene_reader.h"
+
+namespace evas::scene_detail {
+
+IntegratorSettings SceneReader::read_integrator(const Node& n) const {
+  const std::string item = "integrator";
+  std::vector<std::string> keys;
+  for (const auto& info : integrator_settings()) keys.push_back(info.key);
+  check_keys(n, item, keys);
+  IntegratorSettings s;
+  // the name first, so that every other key is checked against the same table
+  if (n["name"]) s.name = choice(n["name"], item, "name", integrator_names());
+  for (auto it = n.begin(); it != n.end(); ++it) {
+    const std::string key = it->first.as<std::string>();
+    if (key == "name") continue;
+    const Node v = it->second;
+    if (!v.IsScalar()) fail(v, item, "'" + key + "' must be a single value" + got(v));
+    // The value's type in the scene's own words first (range checks follow).
+    for (const auto& info : integrator_settings())
+      if (info.key == key && info.kind == "number") number(v, item, key);
+    try {
+      set_integrator_setting(s, key, v.Scalar());
+    } catch (const InputError& e) {
+      fail(v, item, e.what());
+    }
+  }
+  return s;
+}
+
+OutputSpec SceneReader::read_output(const Node& n, const Model& model, double t_start,
+                                    double t_end) const {
+  const std::string item = "output";
+  check_keys(n, item, {"grid", "step", "body", "start", "channels"});
+  OutputSpec out;
+  if (n["grid"]) out.grid = choice(n["grid"], item, "grid", {"time", "crank-angle"});
+  const bool crank = out.grid == "crank-angle";
+  if (n["step"]) {
+    out.step = number_in(n["step"], item, "step", 0.0, crank ? 360.0 : 1e300, true);
+  } else {
+    out.step = crank ? 1.0 : (t_end - t_start) / 1000.0;
+  }
+  if (n["start"]) {
+    out.start = number(n["start"], item, "start");
+    out.start_given = true;
+  } else {
+    out.start = t_start;
+  }
+  if (crank) {
+    const Node b = require(n, "body", item);
+    out.crank_body = text(b, item, "body");
+    int body = -1;
+    for (std::size_t k = 0; k < model.bodies().size(); ++k)
+      if (model.bodies()[k].name == out.crank_body) body = static_cast<int>(k);
+    if (body < 0) fail(b, item, "no body named '" + out.crank_body + "'");
+    if (model.bodies()[body].lof.kind() != LofKind::Spin)
+      fail(b, item,
+           "the crank-angle grid needs a body with a spin LOF; '" + out.crank_body + "' has none");
+  } else {
+    if (n["body"]) fail(n["body"], item, "'body' applies to the crank-angle grid only");
+    if (out.start_given && (out.start < t_start || out.start > t_end))
+      fail(n["start"], item, "'start' = " + number_text(out.start) + " s is outside the time span");
+  }
+  // Output rows before any time is computed: a tiny step (or a huge time span)
+  // would allocate without bound.
+  {
+    double span = t_end - (out.start_given && !crank ? out.start : t_start);
+    std::string what = "s of time";
+    if (crank) {
+      const Lof& lof = model.bodies()[model.find_body(out.crank_body)].lof;
+      span = std::abs(lof.spin_angle(t_end) - lof.spin_angle(t_start)) * 180.0 / M_PI;
+      what = "deg of crank angle";
+    }
+    const double rows = span / out.step + 1.0;
+    if (!(rows <= kMaxOutputRows))
+      fail(n["step"] ? n["step"] : n, item,
+           "'step' = " + number_text(out.step) + (crank ? " deg" : " s") + " over " +
+               number_text(span) + " " + what + " gives " + number_text(rows) +
+               " output rows, more than the limit of " + number_text(kMaxOutputRows) +
+               "; use a larger 'step' or a shorter time span");
+  }
+  if (const Node ch = n["channels"]) {
+    if (!ch.IsSequence()) fail(ch, item, "'channels' must be a list");
+    check_size(ch, item, "channels", kMaxSceneItems);
+    std::map<std::pair<int, std::string>, std::size_t> requested;
+    for (std::size_t i = 0; i < ch.size(); ++i) {
+      const Node c = ch[i];
+      const std::string ci = "output.channels[" + std::to_string(i) + "]";
+      check_keys(c, ci, {"marker", "element", "modal"});
+      if (c.size() != 1) fail(c, ci, "give exactly one of 'marker', 'element' and 'modal'");
+      ChannelRequest req;
+      req.line = c.Mark().line + 1;
+      std::vector<std::string> names;
+      if (c["marker"]) {
+        req.kind = ChannelRequest::Kind::Marker;
+        req.name = text(c["marker"], ci, "marker");
+        for (std::size_t k = 0; k < model.markers().size(); ++k) {
+          names.push_back(model.markers()[k].name);
+          if (names.back() == req.name) req.index = static_cast<int>(k);
+        }
+      } else if (c["element"]) {
+        req.kind = ChannelRequest::Kind::Element;
+        req.name = text(c["element"], ci, "element");
+        for (std::size_t k = 0; k < model.elements().size(); ++k) {
+          names.push_back(model.elements()[k]->name());
+          if (names.back() == req.name) req.index = static_cast<int>(k);
+        }
+      } else {
+        req.kind = ChannelRequest::Kind::Modal;
+        req.name = text(c["modal"], ci, "modal");
+        for (std::size_t k = 0; k < model.bodies().size(); ++k) {
+          names.push_back(model.bodies()[k].name);
+          if (names.back() == req.name) req.index = static_cast<int>(k);
+        }
+      }
+      if (req.index < 0) {
+        const char* what = req.kind == ChannelRequest::Kind::Marker    ? "marker"
+                           : req.kind == ChannelRequest::Kind::Element ? "element"
+                                                                       : "body";
+        fail(c.begin()->second, ci,
+             std::string("no ") + what + " named '" + req.name + "' (known: " + join(names) + ")");
+      }
+      const auto [at, fresh] =
+          requested.emplace(std::make_pair(static_cast<int>(req.kind), req.name), i);
+      if (!fresh)
+        fail(c, ci,
+             "repeats output.channels[" + std::to_string(at->second) + "] (" +
+                 c.begin()->first.as<std::string>() + ": " + req.name +
+                 "): request each channel once");
+      out.channels.push_back(req);
+    }
+  }
+  return out;
+}
+
+}  // namespace evas::scene_detail

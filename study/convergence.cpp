@@ -1,0 +1,167 @@
+// `evas study` convergence (study.h): one family sweeping step or rtol, the
+// observed order (log_log_slope); convergence.csv/.md/.png.
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <sstream>
+
+#include "integrators/settings.h"
+#include "study/report.h"
+#include "study/study.h"
+#include "study/study_common.h"
+
+namespace evas::study {
+
+using namespace detail;
+
+// --- convergence ----------------------------------------------------------------
+
+namespace {
+
+void write_convergence(const Options& opt, ConvergenceResult& res, bool final) {
+  StudyInfo& info = res.info;
+  const fs::path dir = info.out_dir;
+  info.files.clear();
+  // CSV: the swept value and orders in front of the full case table
+  std::vector<Column> cols = case_columns(res.cases);
+  Column x{res.key, res.key, Column::Kind::Real, {}, res.x};
+  Column po{"order", "order", Column::Kind::Real, {}, res.pair_order};
+  cols.insert(cols.begin() + 1, po);
+  cols.insert(cols.begin() + 1, x);
+  write_file_atomic(dir / "convergence.csv", columns_csv(cols, res.cases.size()));
+  info.files.push_back((dir / "convergence.csv").string());
+
+  std::ostringstream md;
+  md << md_header("Convergence study", info, opt, res.reference);
+  md << "| case | " << res.key << " | status | error | order | wall [s] | steps | residuals |\n"
+     << "|---|---:|---|---:|---:|---:|---:|---:|\n";
+  for (std::size_t i = 0; i < res.cases.size(); ++i) {
+    const auto& r = res.cases[i];
+    const bool ran = r.status != "not run";
+    md << "| " << md_cell(r.c.label) << " | " << gnum(res.x[i], 6) << " | " << status_cell(r)
+       << " | " << sci(r.error, 3) << " | " << gnum(res.pair_order[i], 3) << " | "
+       << gnum(r.wall, 4) << " | " << (ran ? std::to_string(r.stats.steps) : "") << " | "
+       << (ran ? std::to_string(r.stats.residual_evals) : "") << " |\n";
+  }
+  md << "\norder: log(e_i / e_(i-1)) / log(" << res.key << "_i / " << res.key
+     << "_(i-1)) between successive cases.\n\n";
+  md << "**observed order** (least-squares slope of log error against log " << res.key << ", "
+     << res.points << " points): "
+     << (std::isnan(res.slope) ? std::string("not enough points") : gnum(res.slope, 4)) << "\n";
+  write_file_atomic(dir / "convergence.md", md.str());
+  info.files.push_back((dir / "convergence.md").string());
+
+  if (!final) return;
+  std::ostringstream data;
+  double sx = 0, sy = 0;
+  int n = 0;
+  for (std::size_t i = 0; i < res.cases.size(); ++i) {
+    const double e = res.cases[i].error;
+    if (res.cases[i].status != "completed" || !(e > 0) || !std::isfinite(e)) continue;
+    data << gnum(res.x[i], 12) << " " << gnum(e, 12) << "\n";
+    sx += std::log(res.x[i]);
+    sy += std::log(e);
+    ++n;
+  }
+  if (n == 0) return;
+  const fs::path png = dir / "convergence.png";
+  std::ostringstream gp;
+  gp << "# convergence figure of " << info.scene_name << " (evas study)\n"
+     << gp_terminal(png, 900, 600) << "$D << EOD\n"
+     << data.str() << "EOD\n"
+     << "set logscale xy\nset format y '1e%L'\nset grid\nset key top left\n"
+     << "set xlabel " << gp_quote(res.key) << "\n"
+     << "set ylabel 'error (relative to each channel amplitude)'\n"
+     << "set title " << gp_quote("convergence: " + res.family + " on " + info.scene_name) << "\n";
+  if (!std::isnan(res.slope)) {
+    const double b = sy / n - res.slope * sx / n;  // the fit passes through the centroid
+    gp << "f(x) = exp(" << gnum(b, 12) << ") * x**(" << gnum(res.slope, 12) << ")\n"
+       << "plot $D using 1:2 with linespoints pt 7 title 'error', f(x) with lines dt 2 title "
+       << gp_quote("slope " + gnum(res.slope, 3)) << "\n";
+  } else {
+    gp << "plot $D using 1:2 with linespoints pt 7 title 'error'\n";
+  }
+  plot(opt, dir / "convergence.gp", gp.str(), info, png);
+}
+
+}  // namespace
+
+double log_log_slope(const std::vector<double>& x, const std::vector<double>& e, int* used) {
+  double sx = 0, sy = 0, sxx = 0, sxy = 0;
+  int n = 0;
+  for (std::size_t i = 0; i < x.size() && i < e.size(); ++i) {
+    if (!(x[i] > 0) || !(e[i] > 0) || !std::isfinite(x[i]) || !std::isfinite(e[i])) continue;
+    const double lx = std::log(x[i]), ly = std::log(e[i]);
+    sx += lx;
+    sy += ly;
+    sxx += lx * lx;
+    sxy += lx * ly;
+    ++n;
+  }
+  if (used) *used = n;
+  if (n < 2) return kNaN;
+  const double den = n * sxx - sx * sx;
+  if (!(std::abs(den) > 0)) return kNaN;
+  return (n * sxy - sx * sy) / den;
+}
+
+ConvergenceResult convergence(const Options& opt, const CaseInput& spec) {
+  Setup s = prepare(opt);
+  std::vector<Case> cases = expand_case(spec.spec, s.info.integrator, spec.where);
+  const std::string where = spec.where.empty() ? "--case '" + spec.spec + "'" : spec.where;
+  if (cases.empty() || cases.front().swept.size() != 1)
+    throw InputError(where + ": a convergence study sweeps exactly one key, step or rtol (" +
+                     (cases.empty() || cases.front().swept.empty()
+                          ? std::string("none is swept")
+                          : "it sweeps " + join(cases.front().swept)) +
+                     ")");
+  ConvergenceResult res;
+  res.key = cases.front().swept.front();
+  if (res.key != "step" && res.key != "rtol")
+    throw InputError(where + ": a convergence study sweeps step or rtol, not " + res.key);
+  auto value = [&](const Case& c) {
+    return std::strtod(get_integrator_setting(c.settings, res.key).c_str(), nullptr);
+  };
+  std::stable_sort(cases.begin(), cases.end(),
+                   [&](const Case& a, const Case& b) { return value(a) > value(b); });
+  if (opt.reference_file.empty()) reference_case(opt.reference, s.info.integrator);
+  res.family = strip_keys(settings_label(cases.front().settings), {res.key});
+
+  say(opt, "evas study: convergence of " + res.family + " over " + res.key + ", " +
+               std::to_string(cases.size()) + " cases -> " + s.out.string());
+  res.reference = make_reference(opt, s);
+  const std::vector<int> rows = reference_rows(opt, s, res.reference);
+  res.info = make_info(s);
+  for (const auto& c : cases) {
+    CaseResult r;
+    r.c = c;
+    res.cases.push_back(r);
+    res.x.push_back(value(c));
+    res.pair_order.push_back(kNaN);
+  }
+  auto update = [&] {
+    std::vector<double> e;
+    int last = -1;
+    for (std::size_t i = 0; i < res.cases.size(); ++i) {
+      const double err = res.cases[i].status == "completed" ? res.cases[i].error : kNaN;
+      e.push_back(err);
+      res.pair_order[i] = kNaN;
+      if (!(err > 0) || !std::isfinite(err)) continue;
+      if (last >= 0)
+        res.pair_order[i] = std::log(err / e[static_cast<std::size_t>(last)]) /
+                            std::log(res.x[i] / res.x[static_cast<std::size_t>(last)]);
+      last = static_cast<int>(i);
+    }
+    res.slope = log_log_slope(res.x, e, &res.points);
+  };
+  write_convergence(opt, res, false);
+  run_cases(opt, s, cases, res.reference, rows, res.cases, res.info, [&] {
+    update();
+    write_convergence(opt, res, false);
+  });
+  update();
+  write_convergence(opt, res, true);
+  return res;
+}
+
+}  // namespace evas::study

@@ -1,0 +1,443 @@
+// What the `evas study` drivers share (study_common.h): the scene setup, the
+// reference run or file, the loop over the cases of work_precision and
+// convergence, the case table (CSV, Markdown, HDF5) and the gnuplot helpers.
+#include "study/study_common.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "integrators/settings.h"
+#include "io/results.h"
+#include "study/report.h"
+
+namespace evas::study::detail {
+
+namespace {
+
+bool same_time(double a, double b, double scale) {
+  return std::abs(a - b) <= 1e-9 * std::max({std::abs(a), std::abs(b), scale});
+}
+
+CaseResult evaluate(const Case& c, const RunData& d, const Reference& ref,
+                    const std::vector<int>& rows, Norm norm, double scale) {
+  CaseResult r;
+  r.c = c;
+  r.status = d.status;
+  r.message = d.message;
+  r.wall = d.wall;
+  r.rows = d.rows();
+  r.stats = d.stats;
+  if (d.status != "completed") return r;
+  bool same = d.time.size() == ref.time.size();
+  for (std::size_t i = 0; same && i < d.time.size(); ++i)
+    same = same_time(d.time[i], ref.time[i], scale);
+  if (!same) {
+    r.status = "failed";
+    r.message = "the output times differ from the reference's";
+    return r;
+  }
+  r.error = relative_error(d.y, ref.y, rows, norm);
+  return r;
+}
+
+std::string case_line(std::size_t k, std::size_t n, const CaseResult& r) {
+  std::ostringstream os;
+  os << "evas study: [" << k << "/" << n << "] " << r.c.label << ": ";
+  if (r.status == "completed")
+    os << "error " << sci(r.error, 3) << ", " << gnum(r.wall, 3) << " s, " << r.stats.steps
+       << " steps, " << r.stats.residual_evals << " residuals";
+  else
+    os << r.status << (r.message.empty() ? "" : ": " + r.message);
+  return os.str();
+}
+
+}  // namespace
+
+// A settings label without the tokens "KEY=..." of the given keys.
+std::string strip_keys(const std::string& label, const std::set<std::string>& keys) {
+  std::istringstream is(label);
+  std::string word, out;
+  while (is >> word) {
+    const auto eq = word.find('=');
+    if (eq != std::string::npos && keys.count(word.substr(0, eq))) continue;
+    out += (out.empty() ? "" : " ") + word;
+  }
+  return out;
+}
+
+bool stopped(const Options& o) { return o.stop && o.stop(); }
+
+void say(const Options& o, const std::string& line) {
+  if (o.log) *o.log << line << "\n" << std::flush;
+}
+
+Setup prepare(const Options& opt) {
+  if (opt.repeats < 1) throw InputError("--repeats must be >= 1");
+  Setup s;
+  s.src = load_scene_source(opt.scene, opt.params, opt.t_end);
+  s.info = probe_scene(s.src);
+  s.channels = select_channels(s.info.channels, opt.channels);
+  for (int c : s.channels) {
+    s.names.push_back(s.info.channels[static_cast<std::size_t>(c)].name);
+    s.units.push_back(s.info.channels[static_cast<std::size_t>(c)].unit);
+  }
+  s.norm = parse_norm(opt.norm);
+  if (opt.window.empty()) {
+    s.window_default = true;
+    if (s.info.crank_channel >= 0) s.window = parse_window("last-cycles=1");
+  } else {
+    s.window = parse_window(opt.window);
+    if (s.window.kind == Window::Kind::LastCycles && s.info.crank_channel < 0)
+      throw InputError("--window " + s.window.text() +
+                       ": needs a crank-angle output grid; the scene's output is on the " +
+                       s.info.grid + " grid (use all or T0:T1)");
+    if (!s.info.crank.empty() || s.window.kind != Window::Kind::LastCycles)
+      window_rows(s.window, s.info.times, s.info.crank);  // early check, before any run
+  }
+  if (s.window_default && s.window.kind == Window::Kind::LastCycles && !s.info.crank.empty()) {
+    try {
+      window_rows(s.window, s.info.times, s.info.crank);
+    } catch (const InputError& e) {
+      say(opt, std::string("evas study: ") + e.what() + "; the window is all outputs instead");
+      s.window = Window{};
+    }
+  }
+  s.out = opt.out_dir.empty() ? fs::path("out") / ("study-" + s.info.name) : fs::path(opt.out_dir);
+  std::error_code ec;
+  fs::create_directories(s.out, ec);
+  if (ec)
+    throw InputError(s.out.string() + ": cannot create the output directory: " + ec.message());
+  return s;
+}
+
+StudyInfo make_info(const Setup& s) {
+  StudyInfo i;
+  i.scene_name = s.info.name;
+  i.scene_path = s.src.path;
+  i.scene_text = s.src.text;
+  i.grid = s.info.grid;
+  i.channels = s.names;
+  i.window = s.window.text();
+  i.norm = norm_text(s.norm);
+  i.error_definition = error_definition(s.norm, s.window);
+  i.out_dir = s.out.string();
+  return i;
+}
+
+// The reference case of a spec on a scene (exactly one case).
+Case reference_case(const std::string& spec, const IntegratorSettings& base) {
+  std::vector<Case> cases = expand_case(spec, base, "--reference '" + spec + "'");
+  if (cases.size() != 1)
+    throw InputError("--reference '" + spec + "': must be a single case (it expands to " +
+                     std::to_string(cases.size()) + ")");
+  return cases.front();
+}
+
+Reference run_reference(const Options& opt, const SceneSource& src, const SceneInfo& info,
+                        const std::vector<int>& channels, const std::vector<std::string>& names,
+                        const std::vector<std::string>& units) {
+  const Case c = reference_case(opt.reference, info.integrator);
+  say(opt, "evas study: reference " + c.label + " ...");
+  RunData d = run_case(src, c.settings, channels, nullptr, opt.stop);
+  if (d.status != "completed")
+    throw ReferenceFailed("the reference run '" + c.label + "' failed: " + d.message);
+  if (d.time.size() != info.times.size())
+    throw ReferenceFailed("the reference run '" + c.label + "' gave " +
+                          std::to_string(d.time.size()) + " of " +
+                          std::to_string(info.times.size()) + " output rows");
+  Reference r;
+  r.description = c.label;
+  r.time = d.time;
+  r.crank = d.crank;
+  r.y = d.y;
+  r.names = names;
+  r.units = units;
+  r.stats = d.stats;
+  r.wall = d.wall;
+  say(opt, "evas study: reference " + c.label + ": " + std::to_string(d.stats.steps) + " steps, " +
+               gnum(d.wall, 3) + " s");
+  return r;
+}
+
+Reference read_reference(const Options& opt, const SceneInfo& info,
+                         const std::vector<std::string>& names,
+                         const std::vector<std::string>& units) {
+  const std::string& path = opt.reference_file;
+  const ResultsData f = read_results(path);
+  Reference r;
+  r.description = path + " (" + f.integrator + ", " + f.status + ")";
+  std::vector<int> cols;
+  for (const auto& n : names) {
+    const auto it = std::find(f.names.begin(), f.names.end(), n);
+    if (it == f.names.end())
+      throw InputError("--reference-file " + path + ": no channel '" + n + "' (the file has: " +
+                       [&] {
+                         std::string s;
+                         for (const auto& x : f.names) s += (s.empty() ? "" : ", ") + x;
+                         return s;
+                       }() +
+                       ")");
+    cols.push_back(static_cast<int>(it - f.names.begin()));
+  }
+  int crank = -1;
+  for (std::size_t i = 0; i < f.names.size(); ++i)
+    if (f.names[i] == "crank_angle") crank = static_cast<int>(i);
+  const double scale = std::abs(info.t_end - info.t_start);
+  std::vector<int> rows;
+  std::size_t j = 0;
+  for (double t : info.times) {
+    while (j < f.time.size() && f.time[j] < t && !same_time(f.time[j], t, scale)) ++j;
+    if (j >= f.time.size() || !same_time(f.time[j], t, scale))
+      throw InputError(
+          "--reference-file " + path + ": no output row at t = " + gnum(t, 12) +
+          " s of the scene's output grid (the file has " + std::to_string(f.time.size()) + " rows" +
+          (f.time.empty()
+               ? std::string()
+               : ", t = " + gnum(f.time.front(), 9) + " .. " + gnum(f.time.back(), 9) + " s") +
+          "; it must come from the same scene, grid and end time)");
+    rows.push_back(static_cast<int>(j));
+    ++j;
+  }
+  r.y.resize(static_cast<long>(rows.size()), static_cast<long>(cols.size()));
+  for (std::size_t k = 0; k < rows.size(); ++k) {
+    r.time.push_back(info.times[k]);
+    if (crank >= 0) r.crank.push_back(f.values(rows[k], crank));
+    for (std::size_t c = 0; c < cols.size(); ++c)
+      r.y(static_cast<long>(k), static_cast<long>(c)) = f.values(rows[k], cols[c]);
+  }
+  if (r.crank.empty()) r.crank = info.crank;
+  r.names = names;
+  r.units = units;
+  say(opt, "evas study: reference " + r.description);
+  return r;
+}
+
+Reference make_reference(const Options& opt, const Setup& s) {
+  if (!opt.reference_file.empty()) return read_reference(opt, s.info, s.names, s.units);
+  return run_reference(opt, s.src, s.info, s.channels, s.names, s.units);
+}
+
+// Window rows on the reference (falls back to all for a default window that does not fit).
+std::vector<int> reference_rows(const Options& opt, Setup& s, const Reference& ref) {
+  try {
+    return window_rows(s.window, ref.time, ref.crank);
+  } catch (const InputError& e) {
+    if (!s.window_default) throw;
+    say(opt, std::string("evas study: ") + e.what() + "; the window is all outputs instead");
+    s.window = Window{};
+    return window_rows(s.window, ref.time, ref.crank);
+  }
+}
+
+void run_cases(const Options& opt, const Setup& s, const std::vector<Case>& cases,
+               const Reference& ref, const std::vector<int>& rows, std::vector<CaseResult>& results,
+               StudyInfo& info, const std::function<void()>& on_case_done) {
+  const double scale = std::abs(s.info.t_end - s.info.t_start);
+  for (std::size_t k = 0; k < cases.size(); ++k) {
+    if (stopped(opt)) {
+      info.interrupted = true;
+      break;
+    }
+    const RunData d =
+        run_case_repeated(s.src, cases[k].settings, s.channels, opt.repeats, opt.stop);
+    if (stopped(opt)) break;  // cut short by the interrupt: left "not run"
+    results[k] = evaluate(cases[k], d, ref, rows, s.norm, scale);
+    say(opt, case_line(k + 1, cases.size(), results[k]));
+    on_case_done();
+  }
+  if (stopped(opt)) info.interrupted = true;
+}
+
+// --- tables ------------------------------------------------------------------
+
+std::vector<Column> case_columns(const std::vector<CaseResult>& rows) {
+  std::vector<Column> cols;
+  auto text = [&](const std::string& name, const std::string& h5,
+                  const std::function<std::string(const CaseResult&)>& f) {
+    Column c{name, h5, Column::Kind::Text, {}, {}};
+    for (const auto& r : rows) c.text.push_back(f(r));
+    cols.push_back(std::move(c));
+  };
+  auto num = [&](const std::string& name, const std::string& h5, Column::Kind kind,
+                 const std::function<double(const CaseResult&)>& f) {
+    Column c{name, h5, kind, {}, {}};
+    for (const auto& r : rows) c.num.push_back(f(r));
+    cols.push_back(std::move(c));
+  };
+  std::set<std::string> keys;
+  text("label", "label", [](const CaseResult& r) { return r.c.label; });
+  text("integrator", "integrator", [](const CaseResult& r) { return r.c.settings.name; });
+  for (const auto& info : integrator_settings()) {
+    if (info.key == "name") continue;
+    keys.insert(info.key);
+    text(info.key, "settings/" + info.key,
+         [&](const CaseResult& r) { return get_integrator_setting(r.c.settings, info.key); });
+  }
+  text("status", "status", [](const CaseResult& r) { return r.status; });
+  text("message", "message", [](const CaseResult& r) { return r.message; });
+  num("error", "error", Column::Kind::Real, [](const CaseResult& r) { return r.error; });
+  num("wall", "wall", Column::Kind::Real, [](const CaseResult& r) { return r.wall; });
+  num("rows", "rows", Column::Kind::Integer, [](const CaseResult& r) { return double(r.rows); });
+  for (const auto& f : stat_fields()) {
+    const std::string name = keys.count(f.name) ? std::string(f.name) + "_taken" : f.name;
+    const auto get = f.get;
+    num(name, std::string("stats/") + f.name,
+        f.integer ? Column::Kind::Integer : Column::Kind::Real,
+        [get](const CaseResult& r) { return r.status == "not run" ? kNaN : get(r.stats); });
+  }
+  return cols;
+}
+
+std::string columns_csv(const std::vector<Column>& cols, std::size_t nrows) {
+  std::ostringstream os;
+  for (std::size_t i = 0; i < cols.size(); ++i) os << (i ? "," : "") << csv_field(cols[i].csv);
+  os << "\n";
+  for (std::size_t r = 0; r < nrows; ++r) {
+    for (std::size_t i = 0; i < cols.size(); ++i) {
+      const Column& c = cols[i];
+      os << (i ? "," : "");
+      if (c.kind == Column::Kind::Text)
+        os << csv_field(c.text[r]);
+      else if (c.kind == Column::Kind::Integer)
+        os << inum(c.num[r]);
+      else
+        os << gnum(c.num[r], 9);
+    }
+    os << "\n";
+  }
+  return os.str();
+}
+
+void write_columns_h5(hid_t group, const std::vector<Column>& cols) {
+  for (const Column& c : cols) {
+    const auto slash = c.h5.find('/');
+    hid_t loc = group;
+    h5::Handle sub;
+    if (slash != std::string::npos) {
+      const std::string g = c.h5.substr(0, slash);
+      sub = h5::exists(group, g) ? h5::open_group(group, g) : h5::create_group(group, g);
+      loc = sub.get();
+    }
+    const std::string name = slash == std::string::npos ? c.h5 : c.h5.substr(slash + 1);
+    const std::vector<hsize_t> dims = {c.kind == Column::Kind::Text ? c.text.size() : c.num.size()};
+    if (c.kind == Column::Kind::Text) {
+      h5::write_strings(loc, name, c.text);
+    } else if (c.kind == Column::Kind::Integer) {
+      std::vector<long long> v;
+      for (double x : c.num) v.push_back(std::isnan(x) ? -1 : static_cast<long long>(x));
+      h5::write_int64s(loc, name, dims, v.data());
+    } else {
+      h5::write_doubles(loc, name, dims, c.num.data());
+    }
+  }
+}
+
+std::string join(const std::vector<std::string>& v, const std::string& sep) {
+  std::string s;
+  for (const auto& x : v) s += (s.empty() ? "" : sep) + x;
+  return s;
+}
+
+std::string md_header(const std::string& title, const StudyInfo& info, const Options& opt,
+                      const Reference& ref) {
+  std::ostringstream md;
+  md << "# " << title << ": " << info.scene_name << "\n\n";
+  md << "- scene: `" << info.scene_path << "`";
+  if (!opt.params.empty()) md << " with " << md_cell(join(opt.params));
+  if (opt.t_end) md << ", end time " << gnum(*opt.t_end, 9) << " s";
+  md << " (" << info.grid << " grid)\n";
+  md << "- reference: " << md_cell(ref.description);
+  if (!std::isnan(ref.wall))
+    md << " (" << ref.stats.steps << " steps, " << gnum(ref.wall, 3) << " s)";
+  md << "\n";
+  md << "- channels: " << md_cell(join(info.channels)) << "\n";
+  md << "- " << info.error_definition << "\n";
+  md << "- wall: init + integrate [s], minimum over " << opt.repeats << " run"
+     << (opt.repeats > 1 ? "s" : "") << "\n";
+  if (info.interrupted) md << "- **interrupted**: the cases marked `not run` were not run\n";
+  md << "\n";
+  return md.str();
+}
+
+std::string status_cell(const CaseResult& r) {
+  if (r.status == "failed") return "failed: " + md_cell(r.message, 70);
+  return r.status;
+}
+
+void write_reference_h5(hid_t file, const Reference& ref, const std::vector<int>& rows) {
+  h5::Handle g = h5::create_group(file, "reference");
+  h5::write_attribute(g, "description", ref.description);
+  const hsize_t nt = ref.time.size(), nc = static_cast<hsize_t>(ref.y.cols());
+  h5::write_doubles(g, "time", {nt}, ref.time.data());
+  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> y = ref.y;
+  h5::write_doubles(g, "values", {nt, nc}, y.data());
+  h5::write_strings(g, "names", ref.names);
+  h5::write_strings(g, "units", ref.units);
+  if (!ref.crank.empty()) h5::write_doubles(g, "crank_angle", {nt}, ref.crank.data());
+  std::vector<long long> w(rows.begin(), rows.end());
+  h5::write_int64s(g, "window_rows", {w.size()}, w.data());
+  const std::vector<double> amp = amplitudes(ref.y, rows);
+  h5::write_doubles(g, "amplitude", {amp.size()}, amp.data());
+  if (!std::isnan(ref.wall)) {
+    h5::write_attribute(g, "wall", ref.wall);
+    h5::write_attribute(g, "steps", static_cast<long long>(ref.stats.steps));
+  }
+}
+
+void write_h5_atomic(const fs::path& path, const std::function<void(hid_t)>& body) {
+  const fs::path tmp = path.string() + ".tmp";
+  {
+    h5::Quiet quiet;
+    try {
+      h5::Handle f = h5::create_file(tmp.string());
+      body(f);
+    } catch (const h5::Failure& e) {
+      throw RunError(path.string() + ": " + e.what());
+    }
+  }
+  std::error_code ec;
+  fs::rename(tmp, path, ec);
+  if (ec) throw RunError(path.string() + ": cannot replace: " + ec.message());
+}
+
+void write_info_attributes(hid_t f, const std::string& kind, const StudyInfo& info,
+                           const Options& opt) {
+  h5::write_attribute(f, "study", kind);
+  h5::write_attribute(f, "scene_name", info.scene_name);
+  h5::write_attribute(f, "scene_path", info.scene_path);
+  h5::write_attribute(f, "scene", info.scene_text);
+  h5::write_attribute(f, "grid", info.grid);
+  h5::write_attribute(f, "channels", join(info.channels, ","));
+  h5::write_attribute(f, "window", info.window);
+  h5::write_attribute(f, "norm", info.norm);
+  h5::write_attribute(f, "error_definition", info.error_definition);
+  h5::write_attribute(f, "repeats", static_cast<long long>(opt.repeats));
+  h5::write_attribute(f, "status", info.interrupted ? "interrupted" : "completed");
+}
+
+// --- gnuplot ------------------------------------------------------------------
+
+bool plot(const Options& opt, const fs::path& script, const std::string& text, StudyInfo& info,
+          const fs::path& png) {
+  write_file_atomic(script, text);
+  info.files.push_back(script.string());
+  if (!opt.plot || !have_gnuplot()) return false;
+  std::error_code ec;
+  fs::remove(png, ec);  // a stale figure must not pass for a new one
+  if (!run_gnuplot(script) || !fs::exists(png)) {
+    say(opt, "evas study: gnuplot failed on " + script.string());
+    return false;
+  }
+  info.files.push_back(png.string());
+  return true;
+}
+
+std::string gp_terminal(const fs::path& png, int w, int h) {
+  std::ostringstream gp;
+  gp << "set terminal pngcairo noenhanced size " << w << "," << h << "\n"
+     << "set output " << gp_quote(png.filename().string()) << "\n";
+  return gp.str();
+}
+
+}  // namespace evas::study::detail

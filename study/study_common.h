@@ -1,0 +1,116 @@
+// Private to study/: what the `evas study` drivers (work_precision.cpp,
+// convergence.cpp, stability.cpp) share. The scene setup, the reference (run,
+// read from a results file, window rows), the loop over the cases of
+// work_precision and convergence, the case table (CSV, Markdown, HDF5) and the
+// gnuplot helpers. Not part of the public API (study/study.h).
+#pragma once
+
+#include <filesystem>
+#include <functional>
+#include <limits>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "io/hdf5_util.h"
+#include "study/study.h"
+
+namespace evas::study::detail {
+
+namespace fs = std::filesystem;
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+/// True once an interrupt was requested.
+bool stopped(const Options& o);
+/// A progress line to opt.log (nothing without one).
+void say(const Options& o, const std::string& line);
+
+/// A settings label without the tokens "KEY=..." of the given keys.
+std::string strip_keys(const std::string& label, const std::set<std::string>& keys);
+/// The strings joined with `sep`.
+std::string join(const std::vector<std::string>& v, const std::string& sep = ", ");
+
+// Everything a study shares once the scene is read.
+struct Setup {
+  SceneSource src;
+  SceneInfo info;
+  std::vector<int> channels;
+  std::vector<std::string> names, units;
+  Window window;
+  bool window_default = false;
+  Norm norm = Norm::Max;
+  fs::path out;
+};
+
+/// Reads the scene, selects the channels, window and norm, creates the output folder.
+Setup prepare(const Options& opt);
+StudyInfo make_info(const Setup& s);
+
+// --- reference --------------------------------------------------------------------
+
+/// The reference case of a spec on a scene (exactly one case).
+Case reference_case(const std::string& spec, const IntegratorSettings& base);
+/// Runs opt.reference on the scene; ReferenceFailed when it fails.
+Reference run_reference(const Options& opt, const SceneSource& src, const SceneInfo& info,
+                        const std::vector<int>& channels, const std::vector<std::string>& names,
+                        const std::vector<std::string>& units);
+/// Reads opt.reference_file at the scene's output times.
+Reference read_reference(const Options& opt, const SceneInfo& info,
+                         const std::vector<std::string>& names,
+                         const std::vector<std::string>& units);
+/// read_reference with --reference-file, else run_reference.
+Reference make_reference(const Options& opt, const Setup& s);
+/// Window rows on the reference (falls back to all for a default window that does not fit).
+std::vector<int> reference_rows(const Options& opt, Setup& s, const Reference& ref);
+
+// --- cases ------------------------------------------------------------------------
+
+/// The loop of work_precision and convergence: for each case in order, checks
+/// the stop request (then sets info.interrupted and stops), runs it
+/// (run_case_repeated), stores it evaluated against the reference in
+/// results[k] (a run cut short by the interrupt stays "not run" and ends the
+/// loop), prints its line and calls on_case_done (the driver writes its tables
+/// there). After the loop, a stop request sets info.interrupted.
+void run_cases(const Options& opt, const Setup& s, const std::vector<Case>& cases,
+               const Reference& ref, const std::vector<int>& rows, std::vector<CaseResult>& results,
+               StudyInfo& info, const std::function<void()>& on_case_done);
+
+// --- tables -----------------------------------------------------------------------
+
+struct Column {
+  enum class Kind { Text, Real, Integer };
+  std::string csv;  // CSV header
+  std::string h5;   // dataset path below /cases
+  Kind kind = Kind::Text;
+  std::vector<std::string> text;
+  std::vector<double> num;
+};
+
+/// The case table: label, integrator, every setting, status, message, error,
+/// wall, rows and every statistic.
+std::vector<Column> case_columns(const std::vector<CaseResult>& rows);
+std::string columns_csv(const std::vector<Column>& cols, std::size_t nrows);
+void write_columns_h5(hid_t group, const std::vector<Column>& cols);
+
+/// The Markdown title and the list above a case table.
+std::string md_header(const std::string& title, const StudyInfo& info, const Options& opt,
+                      const Reference& ref);
+std::string status_cell(const CaseResult& r);
+
+void write_reference_h5(hid_t file, const Reference& ref, const std::vector<int>& rows);
+/// Writes an HDF5 file through body at path.tmp and renames it onto path.
+void write_h5_atomic(const fs::path& path, const std::function<void(hid_t)>& body);
+void write_info_attributes(hid_t f, const std::string& kind, const StudyInfo& info,
+                           const Options& opt);
+
+// --- gnuplot ----------------------------------------------------------------------
+
+/// Writes the gnuplot script and, with --plot and gnuplot present, runs it;
+/// adds the files written to info.files. True when the figure was made.
+bool plot(const Options& opt, const fs::path& script, const std::string& text, StudyInfo& info,
+          const fs::path& png);
+/// The pngcairo terminal and output lines of a script.
+std::string gp_terminal(const fs::path& png, int w, int h);
+
+}  // namespace evas::study::detail
