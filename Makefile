@@ -54,8 +54,8 @@ sanitize: build
 
 bench: build
 	cmake --build $(BUILD) -j$(JOBS) --target evas_bench
-	JOBS=$(JOBS) ./validation/baseline.sh $(BUILD)
-	./$(BUILD)/validation/evas_bench docs/performance.md validation/engine/engine.yaml \
+	JOBS=$(JOBS) ./bench/baseline.sh $(BUILD)
+	./$(BUILD)/bench/evas_bench docs/performance.md validation/engine/engine.yaml \
 	  $(BUILD)/baseline/build/evas $(BUILD)/baseline/src/validation/engine/engine.yaml
 
 # Work-precision of every integrator on the paper's engine, Case 1 and Case 2

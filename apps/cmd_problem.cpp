@@ -81,7 +81,7 @@ int cmd_problem(const std::vector<std::string>& args) {
       "Exit codes: 0 completed, 1 bad input, 2 the integration failed.\n\noptions");
   opts.add_options()("help,h", "show this help")("list", "list the problems")(
       "integrator", po::value<std::string>()->default_value("ida"),
-      "ida, cvode, generalized-alpha, linear-acceleration or a loaded plug-in")(
+      (builtin_integrator_list() + " or a loaded plug-in").c_str())(
       "formulation", po::value<std::string>()->default_value("default"),
       "index-3, index-2, ggl, index-1, penalty or default (the integrator's)")(
       "rtol", po::value<std::string>()->default_value("1e-8"), "relative tolerance")(

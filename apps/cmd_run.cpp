@@ -59,11 +59,11 @@ int cmd_run(const std::vector<std::string>& args) {
       "options");
   opts.add_options()("help,h", "show this help")(
       "integrator", po::value<std::string>(),
-      "integrator: ida, cvode, generalized-alpha, linear-acceleration, radau")(
+      ("integrator: " + builtin_integrator_list() + " or a loaded plug-in").c_str())(
       "rtol", po::value<std::string>(), "relative tolerance (adaptive integrators)")(
       "atol", po::value<std::string>(), "absolute tolerance (adaptive integrators)")(
       "step", po::value<std::string>(),
-      "fixed step [s] (generalized-alpha, linear-acceleration, radau)")(
+      ("fixed step [s] (" + builtin_integrator_list(true) + ")").c_str())(
       "set,s", po::value<std::vector<std::string>>()->composing(),
       "KEY=VALUE: any integrator setting, repeatable (see --help-settings); applied after "
       "the scene's integrator block and the options above")(

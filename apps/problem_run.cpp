@@ -62,7 +62,7 @@ void problem_work_precision(const problems::LibraryProblem& lp, const std::files
     s.name = "generalized-alpha";
     s.formulation = "index-3";
     s.step = lp.t_end / (250.0 * std::pow(2.0, k));
-    s.step_control = "fixed";
+    s.step_control = StepControl::fixed;
     s.rtol = 1e-10;
     s.atol = 1e-12;
     std::ostringstream label;

@@ -6,7 +6,7 @@
 # (git archive into BUILD/baseline/src; nothing is written into the source
 # tree); a clone without that commit (a shallow one) skips the side-by-side
 # table with a message. Built once: a second call finds BUILD/baseline/commit.
-# Usage: validation/baseline.sh [BUILD]
+# Usage: bench/baseline.sh [BUILD]
 set -eu
 BUILD=${1:-build}
 JOBS=${JOBS:-2}

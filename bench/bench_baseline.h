@@ -1,5 +1,5 @@
 // evas_bench, side by side with the code of 2026-11-24 (issue 12's starting
-// point, built by validation/baseline.sh): both `evas run` programs on the
+// point, built by bench/baseline.sh): both `evas run` programs on the
 // same scenes in turn (old, new, old, new, ...), so that a drift of the shared
 // machine's speed falls on both. Each pair gives the ratio of the integrators'
 // microseconds per step (summary.json: stats.wall_seconds / stats.steps) and of
@@ -75,7 +75,7 @@ inline std::string baseline_table(const std::string& engine_path, const std::str
                                   int pairs = 3) {
   namespace fs = std::filesystem;
   if (old_evas.empty() || !fs::exists(old_evas))
-    return "Not measured in this run: no build of the 2026-11-24 code (`validation/baseline.sh` "
+    return "Not measured in this run: no build of the 2026-11-24 code (`bench/baseline.sh` "
            "builds it from this clone's history; a shallow clone lacks it).\n";
   char tmpl[] = "/tmp/evas-baseline.XXXXXX";
   if (!mkdtemp(tmpl)) throw RunError("cannot create a temporary folder");

@@ -33,6 +33,7 @@
 #include <vector>
 
 #include "integrators/second_order_ls.h"
+#include "integrators/settings.h"
 #include "io/scene.h"
 #include "solver/first_order.h"
 #include "solver/system.h"
@@ -278,7 +279,7 @@ inline std::string engine_table(const std::string& path) {
         s.rtol = r.rtol;
         s.atol = r.atol;
         if (r.step > 0.0) s.step = r.step;
-        s.step_control = r.control;  // substep: failed steps as sub-steps
+        set_integrator_setting(s, "step_control", r.control);  // substep: failed steps as sub-steps
         study::RunData d = study::run_case(c.src, s, channels);
         if (d.status != "completed")
           throw RunError(c.label + " " + run_label(r) + ": " + d.message);

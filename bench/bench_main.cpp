@@ -3,9 +3,9 @@
 //     paper's literal node sums (O(N n)), for N = 1k, 10k, 100k nodes.
 //  2. IDA with KLU against IDA with dense LU as the number of modes grows, on a
 //     chain of flexible bodies coupled by spring-dampers.
-//  3. The paper's engine, Case 1 and Case 2 (validation/bench_engine.h).
+//  3. The paper's engine, Case 1 and Case 2 (bench/bench_engine.h).
 //  4. Scaling of the engine's cost per step with modes and elements
-//     (validation/bench_scaling.h).
+//     (bench/bench_scaling.h).
 // usage: evas_bench [OUT.md] [ENGINE.yaml] (default validation/engine/engine.yaml,
 // relative to the working directory: `make bench` runs it from the source tree)
 // Times are the minimum over repeats after a warm-up; ratios measured in one run
@@ -191,7 +191,7 @@ std::string klu_table() {
 int main(int argc, char** argv) {
   const std::string out = argc > 1 ? argv[1] : "";
   const std::string engine = argc > 2 ? argv[2] : "validation/engine/engine.yaml";
-  // the evas of 2026-11-24 and its engine scene (validation/baseline.sh)
+  // the evas of 2026-11-24 and its engine scene (bench/baseline.sh)
   const std::string old_evas = argc > 3 ? argv[3] : "";
   const std::string old_engine = argc > 4 ? argv[4] : "";
   std::ostringstream doc;
@@ -244,7 +244,7 @@ int main(int argc, char** argv) {
       << "The evas that issue 12 measured its starting point with (commit baefa5a, "
          "2026-11-24: IDA with KLU on the 144 x 144 first-order matrix, the portable x86-64 "
          "build of then, its own scene, bodies and pressure table), built from this clone's "
-         "history by `validation/baseline.sh`, and today's evas, as `evas run` processes in "
+         "history by `bench/baseline.sh`, and today's evas, as `evas run` processes in "
          "turn on the same machine (old, new, old, new, ...; 3 pairs, medians). IDA at the "
          "same rtol (atol = rtol / 1e4), today with the scene's second-order solver; and "
          "today's cheapest setting below 1e-3 per channel (generalized-alpha at 1/6 deg, "

@@ -12,12 +12,13 @@
 
 namespace evas {
 
-// Factories behind make_integrator (registry.cpp), one per source file.
-std::unique_ptr<Integrator> make_ida_integrator();
-std::unique_ptr<Integrator> make_cvode_integrator();
-std::unique_ptr<Integrator> make_generalized_alpha_integrator();
-std::unique_ptr<Integrator> make_radau_integrator();
-std::unique_ptr<Integrator> make_linear_acceleration_integrator();
+// The built-in integrators behind make_integrator (registry.cpp), one entry
+// (name, factory, description, capabilities) per integrator's source file.
+IntegratorEntry ida_entry();
+IntegratorEntry cvode_entry();
+IntegratorEntry generalized_alpha_entry();
+IntegratorEntry linear_acceleration_entry();
+IntegratorEntry radau_entry();
 
 /// Track the smallest and largest accepted step.
 inline void note_step(IntegratorStats& s, double h) {

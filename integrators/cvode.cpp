@@ -297,6 +297,23 @@ class CvodeIntegrator final : public Integrator {
 
 }  // namespace
 
-std::unique_ptr<Integrator> make_cvode_integrator() { return std::make_unique<CvodeIntegrator>(); }
+IntegratorEntry cvode_entry() {
+  IntegratorCapabilities c;
+  c.declared = true;
+  c.adaptive = true;
+  c.reads = {"rtol",
+             "atol",
+             "max_step",
+             "linear_solver",
+             "method",
+             "max_order",
+             "newton_coefficient",
+             "max_steps",
+             "formulation",
+             "penalty_stiffness",
+             "penalty_damping"};
+  return {"cvode", [] { return std::make_unique<CvodeIntegrator>(); },
+          "CVODE (SUNDIALS): BDF + Newton or Adams", c};
+}
 
 }  // namespace evas

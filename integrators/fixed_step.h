@@ -58,19 +58,17 @@ class FixedStepIntegrator : public Integrator {
     if (!(s.step > 0.0) || !std::isfinite(s.step))
       throw InputError(name() + ": step must be > 0 (got " + format_number(s.step) + ")");
     if (s.max_iterations < 1) throw InputError(name() + ": max_iterations must be >= 1");
-    if (s.step_control != "fixed" && s.step_control != "substep" && s.step_control != "adaptive")
-      throw InputError(name() + ": step_control '" + s.step_control +
-                       "' is unknown (fixed, substep, adaptive)");
     // the first step, min(step, max_step), must be one the step control may take
-    if (s.step_control != "fixed") {
+    if (s.step_control != StepControl::fixed) {
       if (s.max_step > 0.0 && s.max_step < s.min_step)
         throw InputError(name() + ": max_step = " + format_number(s.max_step) +
                          " s is below min_step = " + format_number(s.min_step) + " s");
       if (s.step < s.min_step)
-        throw InputError(name() + ": step = " + format_number(s.step) +
-                         " s is below min_step = " + format_number(s.min_step) + " s (" +
-                         (s.step_control == "adaptive" ? "the first step" : "the fixed step") +
-                         " must be one the step control may take)");
+        throw InputError(
+            name() + ": step = " + format_number(s.step) +
+            " s is below min_step = " + format_number(s.min_step) + " s (" +
+            (s.step_control == StepControl::adaptive ? "the first step" : "the fixed step") +
+            " must be one the step control may take)");
     }
     // Constraints: in the integrator's own form where it has one
     // (takes_constraints), else only as the penalty ODE (dae/penalty.h).
@@ -117,7 +115,7 @@ class FixedStepIntegrator : public Integrator {
       throw RunError(name() + ": output time " + format_number(tout) + " s is not after " +
                      format_number(tout_last_) + " s");
     }
-    const bool adaptive = s_.step_control == "adaptive";
+    const bool adaptive = s_.step_control == StepControl::adaptive;
     while (true) {
       // h stays bit-identical to settings.step unless the step is cut (so the
       // derived classes can keep their factorizations)
@@ -333,7 +331,7 @@ class FixedStepIntegrator : public Integrator {
         return;
       }
       ++stats_.convergence_failures;
-      if (s_.step_control == "fixed") throw RunError(failure_);
+      if (s_.step_control == StepControl::fixed) throw RunError(failure_);
       sub_end_ = t_ + h;
       sub_len_ = h;
       sub_h_ = 0.5 * h;

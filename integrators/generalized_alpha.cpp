@@ -35,7 +35,7 @@ class GeneralizedAlpha final : public NewmarkDaeIntegrator {
     p.gamma = 0.5 - p.alpha_m + p.alpha_f;
     p.beta = 0.25 * (1.0 - p.alpha_m + p.alpha_f) * (1.0 - p.alpha_m + p.alpha_f);
     p.balance = false;
-    p.iteration = "effective-mass";
+    p.iteration = Iteration::effective_mass;
     return p;
   }
   bool index3_formulation(const std::string& f) const override {
@@ -48,8 +48,27 @@ class GeneralizedAlpha final : public NewmarkDaeIntegrator {
 
 }  // namespace
 
-std::unique_ptr<Integrator> make_generalized_alpha_integrator() {
-  return std::make_unique<GeneralizedAlpha>();
+IntegratorEntry generalized_alpha_entry() {
+  IntegratorCapabilities c;
+  c.declared = true;
+  c.adaptive = true;
+  c.fixed_step = true;
+  c.formulations = {"index-3"};
+  c.reads = {"rtol",
+             "atol",
+             "step",
+             "max_step",
+             "min_step",
+             "step_control",
+             "iteration",
+             "anderson_depth",
+             "max_iterations",
+             "formulation",
+             "penalty_stiffness",
+             "penalty_damping"};
+  c.reads.push_back("rho_inf");
+  return {"generalized-alpha", [] { return std::make_unique<GeneralizedAlpha>(); },
+          "generalised-alpha (Chung-Hulbert 1993) on the second-order form", c};
 }
 
 }  // namespace evas

@@ -453,6 +453,26 @@ class IdaIntegrator final : public Integrator {
 
 }  // namespace
 
-std::unique_ptr<Integrator> make_ida_integrator() { return std::make_unique<IdaIntegrator>(); }
+IntegratorEntry ida_entry() {
+  IntegratorCapabilities c;
+  c.declared = true;
+  c.adaptive = true;
+  c.formulations = {"ggl", "index-3", "index-2", "index-1"};
+  c.reads = {"rtol",
+             "atol",
+             "max_step",
+             "linear_solver",
+             "jacobian_age",
+             "max_order",
+             "newton_coefficient",
+             "max_steps",
+             "formulation",
+             "baumgarte_alpha",
+             "baumgarte_beta",
+             "penalty_stiffness",
+             "penalty_damping"};
+  return {"ida", [] { return std::make_unique<IdaIntegrator>(); },
+          "IDA (SUNDIALS): variable-order BDF on the implicit residual", c};
+}
 
 }  // namespace evas

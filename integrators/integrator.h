@@ -23,6 +23,25 @@
 
 namespace evas {
 
+/// How the Newmark family and radau step (settings.step_control).
+enum class StepControl {
+  fixed,    ///< steps of settings.step; a failed step ends the run
+  substep,  ///< steps of settings.step; a failed step is retried as sub-steps
+  adaptive  ///< local error against rtol/atol, from settings.step
+};
+/// How the Newmark family solves its implicit step (settings.iteration).
+enum class Iteration {
+  method_default,  ///< the method's own: fixed-point (linear-acceleration), effective-mass
+                   ///< (generalized-alpha)
+  fixed_point,
+  anderson,
+  effective_mass,
+  newton
+};
+/// The text forms of the choices, as scenes, the command line and files write them.
+const char* to_text(StepControl c);
+const char* to_text(Iteration i);
+
 struct IntegratorSettings {
   std::string name = "ida";
   double rtol = 1e-6;
@@ -45,15 +64,13 @@ struct IntegratorSettings {
   /// ida, cvode: safety factor of the Newton convergence test (IDASetNonlinConvCoef,
   /// CVodeSetNonlinConvCoef); 0 = the solver's (0.33 IDA, 0.1 CVODE)
   double newton_coefficient = 0.0;
-  /// generalized-alpha, linear-acceleration: "default" (fixed-point for
-  /// linear-acceleration, effective-mass for generalized-alpha), "fixed-point",
-  /// "anderson", "effective-mass" or "newton"
-  std::string iteration = "default";
+  /// generalized-alpha, linear-acceleration: the iteration of the implicit step
+  Iteration iteration = Iteration::method_default;
   int anderson_depth = 5;  ///< anderson: number of earlier iterates mixed
-  /// generalized-alpha, linear-acceleration: "fixed" (pure fixed step, a failed
-  /// step ends the run), "substep" (fixed step; a failed step is retried as sub-steps
-  /// down to min_step) or "adaptive" (local error against rtol/atol, from `step`)
-  std::string step_control = "substep";
+  /// generalized-alpha, linear-acceleration, radau: fixed (a failed step ends
+  /// the run), substep (a failed step is retried as sub-steps down to min_step)
+  /// or adaptive (local error against rtol/atol, from `step`)
+  StepControl step_control = StepControl::substep;
   double min_step = 1e-12;  ///< smallest step the step control may take [s]
   /// Constrained problems (Problem::constraint_count() > 0): "index-3", "index-2",
   /// "ggl", "index-1" (with Baumgarte terms when baumgarte_alpha/beta > 0) or
@@ -112,6 +129,23 @@ class Integrator {
   StepMonitor monitor_;
 };
 
+/// What an integrator declares of itself when it is registered: its kind and
+/// the settings it reads. The settings table (integrators/settings.h) takes
+/// from these declarations which settings a run's method leaves unread (evas
+/// run warns of them, evas study refuses a case key no case reads, summary.json
+/// lists them).
+struct IntegratorCapabilities {
+  bool declared = false;    ///< false: nothing declared (a plug-in's reads are its own)
+  bool adaptive = false;    ///< steps against rtol/atol (always, or with step_control=adaptive)
+  bool fixed_step = false;  ///< steps at settings.step (step_control fixed or substep)
+  /// The constraint formulations it solves in a form of its own (every
+  /// integrator also takes constraints as penalty forces).
+  std::vector<std::string> formulations;
+  /// The keys of the settings it reads (integrators/settings.h), besides name.
+  std::vector<std::string> reads;
+  bool reads_setting(const std::string& key) const;
+};
+
 /// Names accepted by make_integrator: the built-in five, then those registered.
 std::vector<std::string> integrator_names();
 /// The built-in five alone (no plug-in).
@@ -123,9 +157,21 @@ using IntegratorFactory = std::function<std::unique_ptr<Integrator>()>;
 /// name like a built-in one (scenes, `evas run --integrator`, studies, problems).
 /// Throws InputError when the name is invalid or taken.
 void register_integrator(const std::string& name, IntegratorFactory factory,
-                         const std::string& description = "");
+                         const std::string& description = "",
+                         const IntegratorCapabilities& capabilities = {});
 /// The one-line description given at registration ("" if none).
 std::string integrator_description(const std::string& name);
+/// The capabilities declared at registration (declared = false when none, or
+/// when the name is unknown).
+IntegratorCapabilities integrator_capabilities(const std::string& name);
+/// A built-in integrator as registry.cpp lists it: one function per
+/// integrator's own file (integrators/common.h).
+struct IntegratorEntry {
+  std::string name;
+  IntegratorFactory factory;
+  std::string description;
+  IntegratorCapabilities capabilities;
+};
 /// Throws InputError naming the integrator when unknown.
 std::unique_ptr<Integrator> make_integrator(const std::string& name);
 

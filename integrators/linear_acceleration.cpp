@@ -49,7 +49,7 @@ class LinearAcceleration final : public NewmarkDaeIntegrator {
                        format_number(s_.balance_tol) + ")");
     Parameters p;  // alpha_m = alpha_f = 0, beta = 1/6, gamma = 1/2
     p.balance = true;
-    p.iteration = "fixed-point";
+    p.iteration = Iteration::fixed_point;
     return p;
   }
   bool index3_formulation(const std::string& f) const override { return f == "index-3"; }
@@ -61,8 +61,27 @@ class LinearAcceleration final : public NewmarkDaeIntegrator {
 
 }  // namespace
 
-std::unique_ptr<Integrator> make_linear_acceleration_integrator() {
-  return std::make_unique<LinearAcceleration>();
+IntegratorEntry linear_acceleration_entry() {
+  IntegratorCapabilities c;
+  c.declared = true;
+  c.adaptive = true;
+  c.fixed_step = true;
+  c.formulations = {"index-3"};  // on request (the default is penalty): it diverges
+  c.reads = {"rtol",
+             "atol",
+             "step",
+             "max_step",
+             "min_step",
+             "step_control",
+             "iteration",
+             "anderson_depth",
+             "max_iterations",
+             "formulation",
+             "penalty_stiffness",
+             "penalty_damping"};
+  c.reads.push_back("balance_tol");
+  return {"linear-acceleration", [] { return std::make_unique<LinearAcceleration>(); },
+          "the paper's linear-acceleration iteration (Newmark beta = 1/6)", c};
 }
 
 }  // namespace evas

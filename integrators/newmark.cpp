@@ -8,38 +8,20 @@
 
 namespace evas {
 
-namespace {
-
-const char* iteration_name(int k) {
-  static const char* names[] = {"fixed-point", "anderson", "effective-mass", "newton"};
-  return names[k];
-}
-
-}  // namespace
-
 void NewmarkIntegrator::setup() {
   par_ = parameters();
-  const std::string it = s_.iteration == "default" ? par_.iteration : s_.iteration;
-  if (it == "fixed-point")
-    it_ = Iteration::FixedPoint;
-  else if (it == "anderson")
-    it_ = Iteration::Anderson;
-  else if (it == "effective-mass")
-    it_ = Iteration::EffectiveMass;
-  else if (it == "newton")
-    it_ = Iteration::Newton;
-  else
-    throw InputError(name() + ": iteration '" + it +
-                     "' is unknown (fixed-point, anderson, effective-mass, newton)");
-  if (it_ == Iteration::Anderson && s_.anderson_depth < 1)
+  it_ = s_.iteration == Iteration::method_default ? par_.iteration : s_.iteration;
+  if (it_ == Iteration::method_default)
+    throw InputError(name() + ": its parameters name no default iteration");
+  if (it_ == Iteration::anderson && s_.anderson_depth < 1)
     throw InputError(name() + ": anderson_depth must be >= 1");
 
   K_ = p_->jacobian_pattern();
   K_.makeCompressed();
   C_ = K_;
   so_ = std::make_unique<SecondOrderSolver>(K_);
-  combined_ = (it_ == Iteration::EffectiveMass || it_ == Iteration::Newton) &&
-              s_.step_control != "adaptive";
+  combined_ = (it_ == Iteration::effective_mass || it_ == Iteration::newton) &&
+              s_.step_control != StepControl::adaptive;
   so_->C().coeffs().setZero();  // (factorize_combination's S = K + 0 C)
   factored_ = false;
   have_jacobian_ = false;
@@ -50,7 +32,7 @@ void NewmarkIntegrator::setup() {
   R_.resize(n_);
   f_prev_ = Vec::Zero(n_);
   delta_.resize(n_);
-  if (it_ == Iteration::Anderson) {
+  if (it_ == Iteration::anderson) {
     dG_.resize(n_, s_.anderson_depth);
     dF_.resize(n_, s_.anderson_depth);
   }
@@ -99,10 +81,58 @@ bool NewmarkIntegrator::step(double t, double h) {
                       [&] { return iterate(t, h); });
 }
 
+// The update delta_ of the acceleration by the step's iteration: Newton
+// (a fresh matrix at every iterate), effective mass (a held matrix, refreshed
+// when the iteration contracts slowly), or the fixed point and Anderson (the
+// body operator's matrix, or the residual scaled by the unit mass).
+void NewmarkIntegrator::solve_update(double t1, double h, double am, bool& refresh, bool& fresh) {
+  switch (it_) {
+    case Iteration::newton:
+      if (combined_) {
+        factorize_combination(t1, h);
+      } else {
+        p_->force_jacobian(t1, q1_.data(), v1_.data(), K_, C_);
+        ++stats_.jacobian_evals;
+        factorize(K_, C_, h);
+      }
+      so_->solve_matrix(R_.data(), delta_.data());
+      ++stats_.linear_solves;
+      break;
+    case Iteration::effective_mass:
+      if (refresh || (combined_ && (!factored_ || std::abs(h / h_factor_ - 1.0) > 0.2))) {
+        if (combined_) {
+          factorize_combination(t1, h);
+        } else {
+          p_->force_jacobian(t1, q1_.data(), v1_.data(), K_, C_);
+          ++stats_.jacobian_evals;
+          have_jacobian_ = true;
+          factorize(K_, C_, h);
+        }
+        fresh = true;
+        refresh = false;
+      } else if (!factored_ || std::abs(h / h_factor_ - 1.0) > 0.2) {
+        factorize(K_, C_, h);
+      }
+      so_->solve_matrix(R_.data(), delta_.data());
+      ++stats_.linear_solves;
+      break;
+    case Iteration::method_default:  // (resolved to the method's own in setup())
+    case Iteration::fixed_point:
+    case Iteration::anderson:
+      if (body_) {
+        so_->solve_matrix(R_.data(), delta_.data());
+        ++stats_.linear_solves;
+      } else {
+        delta_ = R_ / (1.0 - am);
+      }
+      break;
+  }
+}
+
 bool NewmarkIntegrator::iterate(double t, double h) {
   const double t1 = t + h;
   const double am = par_.alpha_m, af = par_.alpha_f;
-  const bool fixed_point = it_ == Iteration::FixedPoint || it_ == Iteration::Anderson;
+  const bool fixed_point = it_ == Iteration::fixed_point || it_ == Iteration::anderson;
   if (fixed_point) {
     p_->body_operator(t1, K_, C_);
     ++stats_.jacobian_evals;
@@ -119,7 +149,7 @@ bool NewmarkIntegrator::iterate(double t, double h) {
   // SUNDIALS' Newton does: the changes of q and v implied by the last update,
   // (beta h^2, gamma h) delta a, at 0.1 in the weighted RMS norm (fixed_step.h);
   // otherwise on the method's own test (balance or increment).
-  const bool adaptive = s_.step_control == "adaptive";
+  const bool adaptive = s_.step_control == StepControl::adaptive;
   const bool balance = par_.balance && !adaptive;
   const double btol = s_.balance_tol;
   Vec& a = a1_;
@@ -132,7 +162,7 @@ bool NewmarkIntegrator::iterate(double t, double h) {
   const double a_norm = a_.norm();
   rnorms_.clear();
   bool fresh = false;  // effective-mass: matrix evaluated during this step
-  bool refresh = it_ == Iteration::EffectiveMass && !have_jacobian_;
+  bool refresh = it_ == Iteration::effective_mass && !have_jacobian_;
   double prev = std::numeric_limits<double>::infinity();
   for (int k = 0;; ++k) {
     kinematics(h, a);
@@ -170,7 +200,7 @@ bool NewmarkIntegrator::iterate(double t, double h) {
                     t1, h, k);
       // the paper's fixed point contracts linearly: once the rate is known, give up
       // on a step that cannot balance within max_iterations (sub-steps are cheaper)
-      if (it_ == Iteration::FixedPoint && k >= 4) {
+      if (it_ == Iteration::fixed_point && k >= 4) {
         const double rho = std::cbrt(rn / rnorms_[static_cast<std::size_t>(k - 3)]);
         const double needed = rho < 1.0 ? std::log(eps / btol) / -std::log(rho) : 1e300;
         if (k + needed > 1.5 * s_.max_iterations)
@@ -179,7 +209,7 @@ bool NewmarkIntegrator::iterate(double t, double h) {
                           "max_iterations = " + std::to_string(s_.max_iterations),
                       t1, h, k);
       }
-      if (it_ == Iteration::EffectiveMass && k > 0 && rn > 0.5 * rnorms_[k - 1] && !fresh)
+      if (it_ == Iteration::effective_mass && k > 0 && rn > 0.5 * rnorms_[k - 1] && !fresh)
         refresh = true;
     } else if (k >= s_.max_iterations) {
       return fail("the iteration did not converge (last |delta a|_inf = " +
@@ -187,48 +217,9 @@ bool NewmarkIntegrator::iterate(double t, double h) {
                   t1, h, k);
     }
 
-    switch (it_) {
-      case Iteration::Newton:
-        if (combined_) {
-          factorize_combination(t1, h);
-        } else {
-          p_->force_jacobian(t1, q1_.data(), v1_.data(), K_, C_);
-          ++stats_.jacobian_evals;
-          factorize(K_, C_, h);
-        }
-        so_->solve_matrix(R_.data(), delta_.data());
-        ++stats_.linear_solves;
-        break;
-      case Iteration::EffectiveMass:
-        if (refresh || (combined_ && (!factored_ || std::abs(h / h_factor_ - 1.0) > 0.2))) {
-          if (combined_) {
-            factorize_combination(t1, h);
-          } else {
-            p_->force_jacobian(t1, q1_.data(), v1_.data(), K_, C_);
-            ++stats_.jacobian_evals;
-            have_jacobian_ = true;
-            factorize(K_, C_, h);
-          }
-          fresh = true;
-          refresh = false;
-        } else if (!factored_ || std::abs(h / h_factor_ - 1.0) > 0.2) {
-          factorize(K_, C_, h);
-        }
-        so_->solve_matrix(R_.data(), delta_.data());
-        ++stats_.linear_solves;
-        break;
-      case Iteration::FixedPoint:
-      case Iteration::Anderson:
-        if (body_) {
-          so_->solve_matrix(R_.data(), delta_.data());
-          ++stats_.linear_solves;
-        } else {
-          delta_ = R_ / (1.0 - am);
-        }
-        break;
-    }
+    solve_update(t1, h, am, refresh, fresh);
     ++stats_.nonlinear_iterations;
-    if (it_ == Iteration::Anderson)
+    if (it_ == Iteration::anderson)
       anderson_update(a, k);
     else
       a -= delta_;
@@ -250,7 +241,7 @@ bool NewmarkIntegrator::iterate(double t, double h) {
         stats_.max_step_iterations = std::max<long>(stats_.max_step_iterations, k + 1);
         return true;
       }
-      if (it_ == Iteration::EffectiveMass && dn > 0.5 * prev && !fresh) refresh = true;
+      if (it_ == Iteration::effective_mass && dn > 0.5 * prev && !fresh) refresh = true;
       prev = dn;
     }
   }
@@ -304,7 +295,7 @@ std::string NewmarkIntegrator::contraction_advice(double h) const {
     s += "grows by a factor " + format_number(rho) + " per iteration (the iteration diverges)";
   else
     s += "contracts by only " + format_number(rho) + " per iteration";
-  if (it_ == Iteration::FixedPoint || it_ == Iteration::Anderson) {
+  if (it_ == Iteration::fixed_point || it_ == Iteration::anderson) {
     // the rate scales like h for the elements' damping and h^2 for their
     // stiffness: h * 0.5 / rho gives rate <= 0.5 in either case
     const double h_ok = h * std::min(0.5, 0.5 / std::max(rho, 1e-300));
@@ -317,8 +308,8 @@ std::string NewmarkIntegrator::contraction_advice(double h) const {
 }
 
 bool NewmarkIntegrator::fail(const std::string& why, double t1, double h, int iterations) {
-  failure_ = name() + " (iteration " + iteration_name(static_cast<int>(it_)) + "): " + why +
-             " after " + std::to_string(iterations) + " iterations" + contraction_advice(h) +
+  failure_ = name() + " (iteration " + to_text(it_) + "): " + why + " after " +
+             std::to_string(iterations) + " iterations" + contraction_advice(h) +
              where(t1, h, q1_, v1_);
   return false;
 }

@@ -83,8 +83,8 @@ class NewmarkIntegrator : public FixedStepIntegrator {
  public:
   struct Parameters {
     double alpha_m = 0.0, alpha_f = 0.0, beta = 1.0 / 6.0, gamma = 0.5;
-    bool balance = true;                    ///< balance (true) or increment convergence
-    std::string iteration = "fixed-point";  ///< what "default" means
+    bool balance = true;                           ///< balance (true) or increment convergence
+    Iteration iteration = Iteration::fixed_point;  ///< what "default" means
   };
   /// c_v of the local velocity error c_v h^3 q'''' (see above): kappa +
   /// gamma (1/2 + alpha_m - alpha_f) - 1/6; 1/12 for linear acceleration.
@@ -139,10 +139,11 @@ class NewmarkIntegrator : public FixedStepIntegrator {
                                    Vec& ev);
 
  private:
-  enum class Iteration { FixedPoint, Anderson, EffectiveMass, Newton };
   void kinematics(double h, const Vec& a);
   /// step() from a_ as it is: the iteration to the new state.
   bool iterate(double t, double h);
+  /// The update delta_ of one iterate by the iteration it_ (R_ the residual).
+  void solve_update(double t1, double h, double am, bool& refresh, bool& fresh);
   // S = (1 - am) I + (1 - af)(beta h^2 K + gamma h C), factorized by so_ (dense
   // LU up to n = 200, KLU above; integrators/second_order_ls.h)
   void factorize(const SpMat& K, const SpMat& C, double h);
@@ -157,7 +158,7 @@ class NewmarkIntegrator : public FixedStepIntegrator {
   void anderson_update(Vec& a, int k);
 
   Parameters par_;
-  Iteration it_ = Iteration::FixedPoint;
+  Iteration it_ = Iteration::fixed_point;
   SpMat K_, C_;
   Vec kb_last_, cb_last_;  // body operator of the last factorization (fixed point)
   std::unique_ptr<SecondOrderSolver> so_;

@@ -26,8 +26,8 @@ void NewmarkDaeIntegrator::setup() {
     return;
   }
   par_ = parameters();
-  if (s_.iteration != "default" && s_.iteration != "newton")
-    throw InputError(name() + ": iteration '" + s_.iteration +
+  if (s_.iteration != Iteration::method_default && s_.iteration != Iteration::newton)
+    throw InputError(name() + ": iteration '" + to_text(s_.iteration) +
                      "' does not apply to constrained problems (modified Newton on q and "
                      "lambda; use iteration=default)");
   m_ = p_->constraint_count();

@@ -14,7 +14,9 @@
 #include <string>
 #include <vector>
 
-#define EVAS_PLUGIN_ABI_VERSION 2  // 2: Problem::force_jacobian_combination (the vtable changed)
+// 2: Problem::force_jacobian_combination (the vtable changed); 3: IntegratorSettings
+// keeps step_control and iteration as enums, register_integrator takes capabilities
+#define EVAS_PLUGIN_ABI_VERSION 3
 /// Declares a plug-in's entry point exported whatever the visibility preset:
 ///     EVAS_PLUGIN_EXPORT int evas_plugin_init(int abi_version) { ... }
 #define EVAS_PLUGIN_EXPORT extern "C" __attribute__((visibility("default")))

@@ -400,7 +400,7 @@ class Radau final : public FixedStepIntegrator {
            tab_.D(2, 2) * Z_[2].tail(n)) /
           h;
     f1_ = -a1_;
-    if (s_.step_control == "adaptive") {
+    if (s_.step_control == StepControl::adaptive) {
       r1_.head(n) = (h * tab_.b0) * v_;
       r1_.tail(n) = (h * tab_.b0) * a_;
       for (int j = 0; j < 3; ++j) r1_ += tab_.e[static_cast<std::size_t>(j)] * Z_[j];
@@ -426,6 +426,16 @@ class Radau final : public FixedStepIntegrator {
 
 }  // namespace
 
-std::unique_ptr<Integrator> make_radau_integrator() { return std::make_unique<Radau>(); }
+IntegratorEntry radau_entry() {
+  IntegratorCapabilities c;
+  c.declared = true;
+  c.adaptive = true;
+  c.fixed_step = true;
+  c.reads = {
+      "rtol",         "atol",           "step",        "max_step",          "min_step",
+      "step_control", "max_iterations", "formulation", "penalty_stiffness", "penalty_damping"};
+  return {"radau", [] { return std::make_unique<Radau>(); },
+          "Radau IIA, 3 stages, order 5 (Hairer-Wanner), simplified Newton on n x n matrices", c};
+}
 
 }  // namespace evas

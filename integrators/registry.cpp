@@ -1,6 +1,7 @@
 // make_integrator / integrator_names / register_integrator: the integrators by
 // name (integrator.h). The five built-in ones are registered first; plug-ins
 // (integrators/plugin.h) add theirs at load time.
+#include <algorithm>
 #include <mutex>
 #include <string>
 #include <utility>
@@ -12,22 +13,13 @@ namespace evas {
 
 namespace {
 
-struct Entry {
-  std::string name;
-  IntegratorFactory factory;
-  std::string description;
-};
+using Entry = IntegratorEntry;
 
+// One line per built-in integrator; each declares itself in its own file.
 const std::vector<Entry>& builtin_entries() {
   static const std::vector<Entry> table = {
-      {"ida", &make_ida_integrator, "IDA (SUNDIALS): variable-order BDF on the implicit residual"},
-      {"cvode", &make_cvode_integrator, "CVODE (SUNDIALS): BDF + Newton or Adams"},
-      {"generalized-alpha", &make_generalized_alpha_integrator,
-       "generalised-alpha (Chung-Hulbert 1993) on the second-order form"},
-      {"linear-acceleration", &make_linear_acceleration_integrator,
-       "the paper's linear-acceleration iteration (Newmark beta = 1/6)"},
-      {"radau", &make_radau_integrator,
-       "Radau IIA, 3 stages, order 5 (Hairer-Wanner), simplified Newton on n x n matrices"},
+      ida_entry(),   cvode_entry(), generalized_alpha_entry(), linear_acceleration_entry(),
+      radau_entry(),
   };
   return table;
 }
@@ -54,7 +46,8 @@ bool valid_name(const std::string& name) {
 }  // namespace
 
 void register_integrator(const std::string& name, IntegratorFactory factory,
-                         const std::string& description) {
+                         const std::string& description,
+                         const IntegratorCapabilities& capabilities) {
   if (!valid_name(name))
     throw InputError("register_integrator: '" + name +
                      "' is not a valid integrator name (1 to 64 of a-z, 0-9, '-', '_', '.')");
@@ -64,7 +57,7 @@ void register_integrator(const std::string& name, IntegratorFactory factory,
     if (e.name == name)
       throw InputError("register_integrator: an integrator named '" + name +
                        "' is already registered");
-  registry().push_back({name, std::move(factory), description});
+  registry().push_back({name, std::move(factory), description, capabilities});
 }
 
 std::vector<std::string> integrator_names() {
@@ -85,6 +78,17 @@ std::string integrator_description(const std::string& name) {
   for (const auto& entry : registry())
     if (entry.name == name) return entry.description;
   return "";
+}
+
+IntegratorCapabilities integrator_capabilities(const std::string& name) {
+  std::lock_guard<std::mutex> lock(registry_mutex());
+  for (const auto& entry : registry())
+    if (entry.name == name) return entry.capabilities;
+  return {};
+}
+
+bool IntegratorCapabilities::reads_setting(const std::string& key) const {
+  return !declared || key == "name" || std::find(reads.begin(), reads.end(), key) != reads.end();
 }
 
 std::unique_ptr<Integrator> make_integrator(const std::string& name) {

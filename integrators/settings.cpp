@@ -16,10 +16,21 @@ namespace evas {
 
 namespace {
 
+// A setting read only when another one has a value (anderson_depth with
+// iteration=anderson); empty key: always read by the methods that read it.
+struct Condition {
+  std::string key, value;
+};
+
 struct Entry {
   SettingInfo info;
   std::function<void(IntegratorSettings&, const std::string&)> set;
   std::function<std::string(const IntegratorSettings&)> get;
+  Condition when;
+  Entry& only_with(const std::string& key, const std::string& value) {
+    when = {key, value};
+    return *this;
+  }
 };
 
 std::string number_text(double x) {
@@ -65,9 +76,9 @@ std::string join(const std::vector<std::string>& v) {
 }
 
 // A number in (lo, hi] (open_lo) or [lo, hi].
-Entry number(const std::string& key, const std::string& applies, const std::string& doc,
-             double IntegratorSettings::*field, double lo, double hi, bool open_lo) {
-  Entry e{{key, "number", applies, doc}, nullptr, nullptr};
+Entry number(const std::string& key, const std::string& doc, double IntegratorSettings::*field,
+             double lo, double hi, bool open_lo) {
+  Entry e{{key, "number", "", doc}, nullptr, nullptr, {}};
   e.set = [=](IntegratorSettings& s, const std::string& v) {
     const double x = parse_number(key, v);
     if (x < lo || x > hi || (open_lo && x == lo)) {
@@ -82,9 +93,9 @@ Entry number(const std::string& key, const std::string& applies, const std::stri
 }
 
 template <class Int>
-Entry integer(const std::string& key, const std::string& applies, const std::string& doc,
-              Int IntegratorSettings::*field, long lo, long hi) {
-  Entry e{{key, "integer", applies, doc}, nullptr, nullptr};
+Entry integer(const std::string& key, const std::string& doc, Int IntegratorSettings::*field,
+              long lo, long hi) {
+  Entry e{{key, "integer", "", doc}, nullptr, nullptr, {}};
   e.set = [=](IntegratorSettings& s, const std::string& v) {
     const long x = parse_integer(key, v);
     if (x < lo || x > hi)
@@ -96,10 +107,9 @@ Entry integer(const std::string& key, const std::string& applies, const std::str
   return e;
 }
 
-Entry choice(const std::string& key, const std::string& applies, const std::string& doc,
-             std::string IntegratorSettings::*field,
+Entry choice(const std::string& key, const std::string& doc, std::string IntegratorSettings::*field,
              std::function<std::vector<std::string>()> choices) {
-  Entry e{{key, "choice", applies, doc}, nullptr, nullptr};
+  Entry e{{key, "choice", "", doc}, nullptr, nullptr, {}};
   e.set = [=](IntegratorSettings& s, const std::string& v) {
     const auto c = choices();
     for (const auto& x : c)
@@ -114,68 +124,84 @@ Entry choice(const std::string& key, const std::string& applies, const std::stri
   return e;
 }
 
+// A choice kept as an enum: its values in their text form.
+template <class E>
+Entry enum_choice(const std::string& key, const std::string& doc, E IntegratorSettings::*field,
+                  std::vector<E> values) {
+  Entry e{{key, "choice", "", doc}, nullptr, nullptr, {}};
+  std::vector<std::string> names;
+  for (E v : values) names.push_back(to_text(v));
+  e.set = [=](IntegratorSettings& s, const std::string& v) {
+    for (E x : values)
+      if (v == to_text(x)) {
+        s.*field = x;
+        return;
+      }
+    throw InputError(key + ": '" + v + "' is unknown (expected one of: " + join(names) + ")");
+  };
+  e.get = [=](const IntegratorSettings& s) { return std::string(to_text(s.*field)); };
+  e.info.doc += " (" + join(names) + ")";
+  return e;
+}
+
 const std::vector<Entry>& table() {
   using S = IntegratorSettings;
   const double inf = std::numeric_limits<double>::max();
   static const std::vector<Entry> t = {
-      choice("name", "all", "the integrator", &S::name, [] { return integrator_names(); }),
-      number("rtol", "all adaptive", "relative tolerance", &S::rtol, 0.0, 1.0, true),
-      number("atol", "all", "absolute tolerance (fixed-step methods: on the acceleration update)",
+      choice("name", "the integrator", &S::name, [] { return integrator_names(); }),
+      number("rtol", "relative tolerance (fixed-step methods: with step_control=adaptive)",
+             &S::rtol, 0.0, 1.0, true),
+      number("atol", "absolute tolerance (fixed-step methods: on the acceleration update)",
              &S::atol, 0.0, inf, true),
-      number("step", "generalized-alpha, linear-acceleration, radau",
-             "fixed step, or the first step when adaptive [s]", &S::step, 0.0, inf, true),
-      number("max_step", "all", "largest step, 0 = no limit [s]", &S::max_step, 0.0, inf, false),
-      number("min_step", "generalized-alpha, linear-acceleration, radau",
-             "smallest step of the step control; below it the run fails [s]", &S::min_step, 0.0,
-             inf, true),
-      choice("step_control", "generalized-alpha, linear-acceleration, radau",
-             "fixed: pure fixed step; substep: fixed step, failed steps retried as sub-steps; "
-             "adaptive: local error against rtol/atol",
-             &S::step_control,
-             [] {
-               return std::vector<std::string>{"fixed", "substep", "adaptive"};
-             }),
-      choice("iteration", "generalized-alpha, linear-acceleration",
-             "solution of the implicit step: default = fixed-point for linear-acceleration, "
-             "effective-mass for generalized-alpha",
-             &S::iteration,
-             [] {
-               return std::vector<std::string>{"default", "fixed-point", "anderson",
-                                               "effective-mass", "newton"};
-             }),
-      integer("anderson_depth", "iteration=anderson", "earlier iterates mixed by Anderson",
-              &S::anderson_depth, 1, 50),
-      number("balance_tol", "linear-acceleration",
+      number("step", "fixed step, or the first step when adaptive [s]", &S::step, 0.0, inf, true),
+      number("max_step", "largest step, 0 = no limit [s]", &S::max_step, 0.0, inf, false),
+      number("min_step", "smallest step of the step control; below it the run fails [s]",
+             &S::min_step, 0.0, inf, true),
+      enum_choice("step_control",
+                  "fixed: pure fixed step; substep: fixed step, failed steps retried as "
+                  "sub-steps; adaptive: local error against rtol/atol",
+                  &S::step_control,
+                  std::vector<StepControl>{StepControl::fixed, StepControl::substep,
+                                           StepControl::adaptive}),
+      enum_choice("iteration",
+                  "solution of the implicit step: default = fixed-point for "
+                  "linear-acceleration, effective-mass for generalized-alpha",
+                  &S::iteration,
+                  std::vector<Iteration>{Iteration::method_default, Iteration::fixed_point,
+                                         Iteration::anderson, Iteration::effective_mass,
+                                         Iteration::newton}),
+      integer("anderson_depth", "earlier iterates mixed by Anderson", &S::anderson_depth, 1, 50)
+          .only_with("iteration", "anderson"),
+      number("balance_tol",
              "balance error of Eq. 1 that ends the iteration (0.001 = the paper's 0.1 %)",
              &S::balance_tol, 0.0, 1.0, true),
-      integer("max_iterations", "generalized-alpha, linear-acceleration, radau",
-              "iterations per step (radau: at most 7, RADAU5's limit)", &S::max_iterations, 1,
-              100000),
-      choice("linear_solver", "ida, cvode",
+      integer("max_iterations", "iterations per step (radau: at most 7, RADAU5's limit)",
+              &S::max_iterations, 1, 100000),
+      choice("linear_solver",
              "direct linear solver: klu or dense on the 2n x 2n first-order matrix, "
              "second-order on the n x n matrix K + cj C + cj^2 I (theory 7.9)",
              &S::linear_solver,
              [] {
                return std::vector<std::string>{"klu", "dense", "second-order"};
              }),
-      integer("jacobian_age", "ida: linear_solver=second-order",
+      integer("jacobian_age",
               "steps a Jacobian is reused over (0 = evaluated at every factorization)",
-              &S::jacobian_age, 0, 1000000),
-      choice("method", "cvode", "linear multistep family", &S::method,
+              &S::jacobian_age, 0, 1000000)
+          .only_with("linear_solver", "second-order"),
+      choice("method", "linear multistep family", &S::method,
              [] {
                return std::vector<std::string>{"bdf", "adams"};
              }),
-      integer("max_order", "ida, cvode", "largest order, 0 = the solver's (5 BDF, 12 Adams)",
-              &S::max_order, 0, 12),
-      number("newton_coefficient", "ida, cvode",
+      integer("max_order", "largest order, 0 = the solver's (5 BDF, 12 Adams)", &S::max_order, 0,
+              12),
+      number("newton_coefficient",
              "safety factor of the Newton convergence test, 0 = the solver's (0.33 IDA, 0.1 "
              "CVODE)",
              &S::newton_coefficient, 0.0, 1.0, false),
-      number("rho_inf", "generalized-alpha", "spectral radius at infinity", &S::rho_inf, 0.0, 1.0,
-             false),
-      integer("max_steps", "ida, cvode", "steps allowed per output interval", &S::max_steps, 1,
+      number("rho_inf", "spectral radius at infinity", &S::rho_inf, 0.0, 1.0, false),
+      integer("max_steps", "steps allowed per output interval", &S::max_steps, 1,
               std::numeric_limits<long>::max()),
-      choice("formulation", "constrained problems",
+      choice("formulation",
              "how constraints enter: default = ggl for ida, index-3 for generalized-alpha "
              "(linear-acceleration: index-3 on request, diverges); index-2, ggl, index-1 are "
              "ida's; penalty = forces k g + c g' (an ODE: any integrator)",
@@ -184,18 +210,22 @@ const std::vector<Entry>& table() {
                return std::vector<std::string>{"default", "index-3", "index-2",
                                                "ggl",     "index-1", "penalty"};
              }),
-      number("baumgarte_alpha", "formulation=index-1",
+      number("baumgarte_alpha",
              "Baumgarte damping: adds 2 alpha g' to the acceleration constraint [1/s]",
-             &S::baumgarte_alpha, 0.0, inf, false),
-      number("baumgarte_beta", "formulation=index-1",
+             &S::baumgarte_alpha, 0.0, inf, false)
+          .only_with("formulation", "index-1"),
+      number("baumgarte_beta",
              "Baumgarte stiffness: adds beta^2 g to the acceleration constraint [1/s]",
-             &S::baumgarte_beta, 0.0, inf, false),
-      number("penalty_stiffness", "formulation=penalty",
+             &S::baumgarte_beta, 0.0, inf, false)
+          .only_with("formulation", "index-1"),
+      number("penalty_stiffness",
              "k of the constraint force G^T (k g + c g'), per unit of g [N/m, N m/rad]",
-             &S::penalty_stiffness, 0.0, inf, true),
-      number("penalty_damping", "formulation=penalty",
+             &S::penalty_stiffness, 0.0, inf, true)
+          .only_with("formulation", "penalty"),
+      number("penalty_damping",
              "c of the constraint force G^T (k g + c g'), per unit of g' [N s/m]",
-             &S::penalty_damping, 0.0, inf, false),
+             &S::penalty_damping, 0.0, inf, false)
+          .only_with("formulation", "penalty"),
   };
   return t;
 }
@@ -210,81 +240,90 @@ const Entry& find(const std::string& key) {
 
 }  // namespace
 
+namespace {
+
+// The built-in methods whose declarations (integrator_capabilities) read `key`.
+std::vector<std::string> builtin_readers(const std::string& key) {
+  std::vector<std::string> out;
+  for (const auto& name : builtin_integrator_names())
+    if (integrator_capabilities(name).reads_setting(key)) out.push_back(name);
+  return out;
+}
+
+// "all", or the methods that read the setting, and the condition under which
+// they do ("ida: linear_solver=second-order").
+std::string applies_text(const Entry& e) {
+  const std::vector<std::string> readers = builtin_readers(e.info.key);
+  std::string out = readers.size() == builtin_integrator_names().size() ? "all" : join(readers);
+  if (!e.when.key.empty()) out += ": " + e.when.key + "=" + e.when.value;
+  return out;
+}
+
+}  // namespace
+
 const std::vector<SettingInfo>& integrator_settings() {
   static const std::vector<SettingInfo> infos = [] {
     std::vector<SettingInfo> v;
-    for (const auto& e : table()) v.push_back(e.info);
+    for (const auto& e : table()) {
+      v.push_back(e.info);
+      v.back().applies = applies_text(e);
+    }
     return v;
   }();
   return infos;
 }
 
-namespace {
-
-bool is_builtin(const std::string& name) {
-  const std::vector<std::string> builtin = builtin_integrator_names();
-  return std::find(builtin.begin(), builtin.end(), name) != builtin.end();
-}
-
-// An `applies` text of the table: "ida, cvode", "ida: linear_solver=second-order",
-// "iteration=anderson", "all adaptive". `methods` are the built-in methods it
-// names before ':' (empty when it names anything else); `condition` is the
-// KEY=VALUE after ':', or the whole text when it is one.
-struct Applies {
-  std::vector<std::string> methods;
-  std::string condition;
-};
-
-Applies parse_applies(const std::string& a) {
-  Applies out;
-  const auto colon = a.find(':');
-  std::string list = colon != std::string::npos ? a.substr(0, colon) : a;
-  std::replace(list.begin(), list.end(), ',', ' ');
-  std::istringstream words(list);
-  for (std::string w; words >> w;) {
-    if (!is_builtin(w)) {
-      out.methods.clear();
-      break;
-    }
-    out.methods.push_back(w);
-  }
-  out.condition = colon != std::string::npos         ? a.substr(colon + 1)
-                  : a.find('=') != std::string::npos ? a
-                                                     : "";
-  out.condition.erase(0, out.condition.find_first_not_of(' '));
-  return out;
-}
-
-bool names(const Applies& ap, const std::string& method) {
-  return std::find(ap.methods.begin(), ap.methods.end(), method) != ap.methods.end();
-}
-
-}  // namespace
-
 std::vector<std::string> settings_not_read_by(const std::string& integrator) {
   std::vector<std::string> keys;
-  if (!is_builtin(integrator)) return keys;
-  for (const auto& info : integrator_settings()) {
-    const Applies ap = parse_applies(info.applies);
-    if (!ap.methods.empty() && !names(ap, integrator)) keys.push_back(info.key);
-  }
+  const IntegratorCapabilities caps = integrator_capabilities(integrator);
+  if (!caps.declared) return keys;
+  for (const auto& e : table())
+    if (!caps.reads_setting(e.info.key)) keys.push_back(e.info.key);
   return keys;
 }
 
 std::string setting_unread_reason(const IntegratorSettings& s, const std::string& key) {
-  if (!is_builtin(s.name)) return "";
-  const Applies ap = parse_applies(find(key).info.applies);
-  if (!ap.methods.empty() && !names(ap, s.name))
-    return s.name + " does not read it (" + join(ap.methods) +
-           (ap.methods.size() > 1 ? " do)" : " does)");
-  const auto eq = ap.condition.find('=');
-  if (eq == std::string::npos) return "";
-  const std::string ckey = ap.condition.substr(0, eq), cvalue = ap.condition.substr(eq + 1);
-  if (!setting_unread_reason(s, ckey).empty())
-    return s.name + " does not read it (it applies with " + ap.condition + ")";
-  const std::string here = get_integrator_setting(s, ckey);
-  if (here != cvalue) return "it is read only with " + ap.condition + " (here: " + here + ")";
+  const Entry& e = find(key);
+  const IntegratorCapabilities caps = integrator_capabilities(s.name);
+  if (!caps.declared) return "";
+  const std::string cond = e.when.key.empty() ? "" : e.when.key + "=" + e.when.value;
+  if (!caps.reads_setting(key)) {
+    const std::vector<std::string> readers = builtin_readers(key);
+    return s.name + " does not read it (" + join(readers) + (readers.size() > 1 ? " do" : " does") +
+           (cond.empty() ? "" : ", with " + cond) + ")";
+  }
+  if (cond.empty()) return "";
+  const std::string here = get_integrator_setting(s, e.when.key);
+  if (here != e.when.value) return "it is read only with " + cond + " (here: " + here + ")";
   return "";
+}
+
+const char* to_text(StepControl c) {
+  switch (c) {
+    case StepControl::fixed:
+      return "fixed";
+    case StepControl::substep:
+      return "substep";
+    case StepControl::adaptive:
+      return "adaptive";
+  }
+  return "?";
+}
+
+const char* to_text(Iteration i) {
+  switch (i) {
+    case Iteration::method_default:
+      return "default";
+    case Iteration::fixed_point:
+      return "fixed-point";
+    case Iteration::anderson:
+      return "anderson";
+    case Iteration::effective_mass:
+      return "effective-mass";
+    case Iteration::newton:
+      return "newton";
+  }
+  return "?";
 }
 
 void set_integrator_setting(IntegratorSettings& s, const std::string& key,
@@ -307,12 +346,17 @@ void apply_setting_assignment(IntegratorSettings& s, const std::string& assignme
   }
 }
 
-bool has_fixed_step(const std::string& name) {
-  return name == "generalized-alpha" || name == "linear-acceleration" || name == "radau";
+std::string builtin_integrator_list(bool fixed_step_only) {
+  std::vector<std::string> names;
+  for (const auto& name : builtin_integrator_names())
+    if (!fixed_step_only || has_fixed_step(name)) names.push_back(name);
+  return join(names);
 }
 
+bool has_fixed_step(const std::string& name) { return integrator_capabilities(name).fixed_step; }
+
 bool takes_fixed_steps(const IntegratorSettings& s) {
-  return has_fixed_step(s.name) && s.step_control != "adaptive";
+  return has_fixed_step(s.name) && s.step_control != StepControl::adaptive;
 }
 
 std::string settings_label(const IntegratorSettings& s) {
@@ -336,7 +380,7 @@ std::string settings_reference() {
   const IntegratorSettings d;
   os << "| setting | default | applies to | meaning |\n|---|---|---|---|\n";
   for (const auto& e : table())
-    os << "| `" << e.info.key << "` | " << e.get(d) << " | " << e.info.applies << " | "
+    os << "| `" << e.info.key << "` | " << e.get(d) << " | " << applies_text(e) << " | "
        << e.info.doc << " |\n";
   return os.str();
 }

@@ -33,8 +33,12 @@ std::string get_integrator_setting(const IntegratorSettings& s, const std::strin
 /// Applies "KEY=VALUE" (as given to --set). Throws InputError naming the option.
 void apply_setting_assignment(IntegratorSettings& s, const std::string& assignment);
 
-/// True when `name` is a method that can step at settings.step (generalized-alpha,
-/// linear-acceleration, radau: step_control fixed or substep).
+/// "ida, cvode, ..." : the built-in integrators, or those of them that can step
+/// at settings.step (their declared capabilities), for help texts.
+std::string builtin_integrator_list(bool fixed_step_only = false);
+
+/// True when `name` is a method that declares it can step at settings.step
+/// (generalized-alpha, linear-acceleration, radau: step_control fixed or substep).
 bool has_fixed_step(const std::string& name);
 /// True when `s` names such a method and step_control is not "adaptive".
 bool takes_fixed_steps(const IntegratorSettings& s);

@@ -128,7 +128,7 @@ TEST(SdofLinearAcceleration, ThrowsWhenFixedPointCannotBalance) {
   IntegratorSettings s;
   s.name = "linear-acceleration";
   s.step = 0.2;
-  s.step_control = "fixed";  // no sub-steps: the failed step ends the run
+  s.step_control = StepControl::fixed;  // no sub-steps: the failed step ends the run
   try {
     run_sdof(s, p, {1.0});
     FAIL() << "expected RunError";
@@ -318,8 +318,8 @@ TEST(SdofFailures, GeneralizedAlphaNewtonLimit) {
   IntegratorSettings s;
   s.name = "generalized-alpha";
   s.step = 1e-3;
-  s.max_iterations = 1;      // the first Newton update is never below the tolerance
-  s.step_control = "fixed";  // no sub-steps: the failed step ends the run
+  s.max_iterations = 1;                 // the first Newton update is never below the tolerance
+  s.step_control = StepControl::fixed;  // no sub-steps: the failed step ends the run
   SdofProblem p(oscillators());
   const std::string msg = failure_message(s, p);
   EXPECT_NE(msg.find("did not converge"), std::string::npos) << msg;
@@ -337,8 +337,8 @@ TEST(SdofNewmark, RefusedPredictorFallsBackToConstantAcceleration) {
     IntegratorSettings s;
     s.name = name;
     s.step = 0.01;
-    s.step_control = "fixed";  // a failed step would end the run
-    s.iteration = "effective-mass";
+    s.step_control = StepControl::fixed;  // a failed step would end the run
+    s.iteration = Iteration::effective_mass;
     IntegratorStats plain, refused;
     SdofProblem p(oscillators());
     const Errors e0 = run_sdof(s, p, {0.25, 0.5, 0.75, 1.0}, &plain);
@@ -362,8 +362,8 @@ TEST(SdofNewmark, AdaptiveStepGrowsBackAfterACut) {
     IntegratorSettings s;
     s.name = name;
     s.step = 1e-3;
-    s.step_control = "adaptive";
-    s.iteration = "effective-mass";
+    s.step_control = StepControl::adaptive;
+    s.iteration = Iteration::effective_mass;
     s.rtol = 1e-5;
     s.atol = 1e-7;
     std::vector<double> outputs;
@@ -408,8 +408,8 @@ TEST(SdofNewmark, VelocityErrorCoefficientMatchesTheMethod) {
     IntegratorSettings s;
     s.name = rho < 0 ? "linear-acceleration" : "generalized-alpha";
     s.step = h;
-    s.step_control = "fixed";
-    s.iteration = "effective-mass";
+    s.step_control = StepControl::fixed;
+    s.iteration = Iteration::effective_mass;
     s.rtol = 1e-14;
     s.atol = 1e-14;
     s.balance_tol = 1e-14;

@@ -42,7 +42,7 @@ IntegratorSettings index3_settings(const std::string& name, double h, double rho
   s.rho_inf = rho;
   s.rtol = 1e-12;
   s.atol = 1e-12;
-  s.step_control = "fixed";
+  s.step_control = StepControl::fixed;
   return s;
 }
 

@@ -104,7 +104,7 @@ EndPoint solve(const std::string& name, const std::string& integrator, const std
   s.rtol = rtol;
   s.atol = atol;
   if (step > 0.0) s.step = step;
-  s.step_control = step > 0.0 ? "fixed" : s.step_control;
+  s.step_control = step > 0.0 ? StepControl::fixed : s.step_control;
   auto integ = make_integrator(integrator);
   Vec q, v, lam;
   p->initial_state(q, v);

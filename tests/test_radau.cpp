@@ -115,7 +115,7 @@ TEST(RadauTableau, SplitComplexLUSolvesLikeEigen) {
 TEST(Radau, FifthOrderWithFixedSteps) {
   IntegratorSettings s;
   s.name = "radau";
-  s.step_control = "fixed";
+  s.step_control = StepControl::fixed;
   s.rtol = 1e-13;  // Newton tolerance: far below the truncation error
   s.atol = 1e-15;
   const double h0 = 0.04;
@@ -150,7 +150,7 @@ TEST(Radau, DenseOutputIsFourthOrder) {
   // between steps: the collocation polynomial, O(h^4) in the middle of a step
   IntegratorSettings s;
   s.name = "radau";
-  s.step_control = "fixed";
+  s.step_control = StepControl::fixed;
   s.rtol = 1e-13;
   s.atol = 1e-15;
   std::vector<double> outputs;
@@ -176,7 +176,7 @@ TEST(Radau, AdaptiveErrorFollowsTolerance) {
   for (int k = 0; k < 3; ++k) {
     IntegratorSettings s;
     s.name = "radau";
-    s.step_control = "adaptive";
+    s.step_control = StepControl::adaptive;
     s.step = 1e-3;
     s.rtol = rtols[k];
     s.atol = 1e-2 * rtols[k];

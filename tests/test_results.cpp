@@ -194,11 +194,12 @@ TEST(Results, SummaryJson) {
   EXPECT_NE(text.find(std::string("\"build_arch\": \"") + build_arch() + "\""), std::string::npos)
       << text;
   EXPECT_STRNE(build_arch(), "unknown");
-  // settings IDA does not read are named (the table: "generalized-alpha" for
-  // rho_inf, "cvode" for method), those it reads are not
+  // settings IDA does not read are named (its declaration, integrators/ida.cpp:
+  // rho_inf is generalized-alpha's, method cvode's, anderson_depth the Newmark
+  // family's), those it reads are not
   EXPECT_NE(text.find("\"settings_not_read\": [\"step\", \"min_step\", \"step_control\", "
-                      "\"iteration\", \"balance_tol\", \"max_iterations\", \"method\", "
-                      "\"rho_inf\"]"),
+                      "\"iteration\", \"anderson_depth\", \"balance_tol\", "
+                      "\"max_iterations\", \"method\", \"rho_inf\"]"),
             std::string::npos)
       << text;
 }
@@ -210,14 +211,18 @@ TEST(Results, SettingsNotReadByEachMethod) {
   const auto ga = settings_not_read_by("generalized-alpha");
   EXPECT_TRUE(has(ga, "max_steps") && has(ga, "jacobian_age") && has(ga, "method"));
   EXPECT_FALSE(has(ga, "rho_inf") || has(ga, "step") || has(ga, "rtol") || has(ga, "atol"));
-  EXPECT_FALSE(has(ga, "anderson_depth"));  // depends on iteration, not on the method
+  EXPECT_FALSE(has(ga, "anderson_depth"));     // read with iteration=anderson
+  EXPECT_TRUE(has(ga, "baumgarte_beta"));      // index-1 is ida's
+  EXPECT_FALSE(has(ga, "penalty_stiffness"));  // every method takes the penalty form
   const auto cv = settings_not_read_by("cvode");
   EXPECT_TRUE(has(cv, "rho_inf") && has(cv, "jacobian_age") && !has(cv, "method"));
+  EXPECT_TRUE(has(cv, "anderson_depth") && has(cv, "baumgarte_alpha"));
   EXPECT_TRUE(settings_not_read_by("my-plugin").empty());
 }
 
-// The reason a setting has no effect, from the `applies` column of the table:
-// the method, or a condition on another setting (evas run warns with it, evas
+// The reason a setting has no effect, from the integrators' declarations of
+// what they read (integrator_capabilities) and the table's conditions: the
+// method, or a condition on another setting (evas run warns with it, evas
 // study refuses a case key no case reads).
 TEST(Results, UnreadSettingsAreNamedWithTheReason) {
   struct Check {
@@ -234,13 +239,16 @@ TEST(Results, UnreadSettingsAreNamedWithTheReason) {
        "it is read only with linear_solver=second-order (here: klu)"},
       {"ida", "second-order", "default", "default", "jacobian_age", ""},
       {"ida", "klu", "anderson", "default", "anderson_depth",
-       "ida does not read it (it applies with iteration=anderson)"},
+       "ida does not read it (generalized-alpha, linear-acceleration do, with "
+       "iteration=anderson)"},
       {"cvode", "second-order", "default", "default", "jacobian_age",
-       "cvode does not read it (ida does)"},
+       "cvode does not read it (ida does, with linear_solver=second-order)"},
       {"linear-acceleration", "klu", "default", "default", "anderson_depth",
        "it is read only with iteration=anderson (here: default)"},
       {"linear-acceleration", "klu", "anderson", "default", "anderson_depth", ""},
       {"generalized-alpha", "klu", "default", "default", "baumgarte_beta",
+       "generalized-alpha does not read it (ida does, with formulation=index-1)"},
+      {"ida", "klu", "default", "default", "baumgarte_beta",
        "it is read only with formulation=index-1 (here: default)"},
       {"ida", "klu", "default", "index-1", "baumgarte_beta", ""},
       {"my-plugin", "klu", "default", "default", "rho_inf", ""},  // a plug-in's own
@@ -249,11 +257,40 @@ TEST(Results, UnreadSettingsAreNamedWithTheReason) {
     IntegratorSettings s;
     s.name = c.name;
     s.linear_solver = c.linear_solver;
-    s.iteration = c.iteration;
+    set_integrator_setting(s, "iteration", c.iteration);
     s.formulation = c.formulation;
     EXPECT_EQ(setting_unread_reason(s, c.key), c.reason) << c.name << " " << c.key;
   }
   EXPECT_THROW(setting_unread_reason(IntegratorSettings{}, "rtoll"), InputError);
+}
+
+// An integrator that declares what it reads is held to its declaration; one
+// that declares nothing (a plug-in's default) is never warned about.
+TEST(Results, DeclaredReadsOfARegisteredIntegrator) {
+  IntegratorCapabilities caps;
+  caps.declared = true;
+  caps.adaptive = true;
+  caps.reads = {"rtol", "atol", "max_steps"};
+  register_integrator(
+      "test-declared", [] { return make_integrator("ida"); }, "ida under another name", caps);
+  register_integrator("test-undeclared", [] { return make_integrator("ida"); });
+  IntegratorSettings s;
+  s.name = "test-declared";
+  EXPECT_EQ(setting_unread_reason(s, "rtol"), "");
+  EXPECT_EQ(setting_unread_reason(s, "rho_inf"),
+            "test-declared does not read it (generalized-alpha does)");
+  const auto unread = settings_not_read_by("test-declared");
+  EXPECT_NE(std::find(unread.begin(), unread.end(), "step"), unread.end());
+  EXPECT_EQ(std::find(unread.begin(), unread.end(), "max_steps"), unread.end());
+  EXPECT_FALSE(has_fixed_step("test-declared"));
+  s.name = "test-undeclared";
+  EXPECT_EQ(setting_unread_reason(s, "rho_inf"), "");
+  EXPECT_TRUE(settings_not_read_by("test-undeclared").empty());
+  EXPECT_FALSE(integrator_capabilities("test-undeclared").declared);
+  // the built-in ones declare their kind
+  EXPECT_TRUE(has_fixed_step("radau") && has_fixed_step("generalized-alpha"));
+  EXPECT_FALSE(has_fixed_step("ida") || has_fixed_step("cvode"));
+  EXPECT_EQ(integrator_capabilities("ida").formulations.front(), "ggl");
 }
 
 TEST(Results, ReadErrorsNameTheFile) {

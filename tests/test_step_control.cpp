@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "integrators/integrator.h"
+#include "integrators/settings.h"
 #include "integrators/sundials_util.h"
 #include "sdof_problem.h"
 
@@ -59,7 +60,7 @@ RunResult run(const IntegratorSettings& s, Problem& p, const SdofProblem& exact,
 IntegratorSettings la(const std::string& iteration, double h) {
   IntegratorSettings s;
   s.name = "linear-acceleration";
-  s.iteration = iteration;
+  set_integrator_setting(s, "iteration", iteration);
   s.step = h;
   s.balance_tol = 1e-12;  // far below the truncation error
   s.max_iterations = 200;
@@ -143,7 +144,7 @@ TEST(StepControl, SubstepsRescueADivergingFixedPoint) {
   s.balance_tol = 1e-10;
   SdofProblem p({o}, false);
   const RunResult sub = run(s, p, p, 1.0, 5);
-  s.step_control = "fixed";
+  s.step_control = StepControl::fixed;
   s.step = 0.1;
   SdofProblem p2({o}, false);
   const RunResult half = run(s, p2, p2, 1.0, 5);
@@ -186,7 +187,7 @@ TEST(StepControl, SubstepsStopAtAnOutputInsideTheInterval) {
   s.balance_tol = 1e-10;
   IntegratorStats sub_stats, half_stats;
   const std::vector<Vec> sub = outputs(s, sub_stats);
-  s.step_control = "fixed";
+  s.step_control = StepControl::fixed;
   s.step = 0.1;
   const std::vector<Vec> half = outputs(s, half_stats);
   double d = 0.0;
@@ -225,8 +226,8 @@ TEST(StepControl, AdaptiveStepsFollowTheTolerance) {
     for (int k = 0; k < 2; ++k) {
       IntegratorSettings s;
       s.name = name;
-      s.step_control = "adaptive";
-      s.iteration = "effective-mass";
+      s.step_control = StepControl::adaptive;
+      s.iteration = Iteration::effective_mass;
       s.step = 1e-3;
       s.rtol = k == 0 ? 1e-4 : 1e-6;
       s.atol = 1e-2 * s.rtol;
@@ -260,8 +261,8 @@ TEST(StepControl, ARejectedStepLeavesNoTrace) {
   // both runs solve each step to round-off whatever their convergence tests.
   IntegratorSettings s;
   s.name = "generalized-alpha";
-  s.step_control = "adaptive";
-  s.iteration = "newton";
+  s.step_control = StepControl::adaptive;
+  s.iteration = Iteration::newton;
   s.step = 0.05;
   s.rtol = 1e-5;
   s.atol = 1e-7;
@@ -277,7 +278,7 @@ TEST(StepControl, ARejectedStepLeavesNoTrace) {
   ASSERT_GE(sa.error_test_failures, 3);
 
   IntegratorSettings f = s;
-  f.step_control = "fixed";
+  f.step_control = StepControl::fixed;
   f.step = 0.5;  // longer than every step: each advance() is one step, landed
   auto replay = make_integrator(f.name);
   Vec qb, vb;
@@ -298,7 +299,7 @@ TEST(RecoverableErrors, EveryIntegratorCutsTheStepAndGoesOn) {
     s.rtol = 1e-8;
     s.atol = 1e-10;
     s.step = 1e-3;
-    s.iteration = "effective-mass";
+    s.iteration = Iteration::effective_mass;
     s.balance_tol = 1e-10;
     test::RefusingSdof p(oscillators(), 0.3);
     const RunResult r = run(s, p, p, 1.0);

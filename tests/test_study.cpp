@@ -232,7 +232,7 @@ TEST(StudyCaseGrid, AKeyNoCaseReadsIsAnInputError) {
   const auto c =
       expand_case("linear-acceleration iteration=fixed-point,anderson anderson_depth=2", base);
   ASSERT_EQ(c.size(), 2u);
-  EXPECT_EQ(c[1].settings.iteration, "anderson");
+  EXPECT_EQ(c[1].settings.iteration, Iteration::anderson);
   EXPECT_EQ(c[1].settings.anderson_depth, 2);
 }
 
