@@ -139,6 +139,7 @@ Outcome SceneRun::perform(Integrator& integ, const IntegratorSettings& settings,
     const double eps = 1e-12 * std::max(1.0, std::abs(t_start_));
     if (times.front() <= t_start_ + eps) {
       outputs.values(t_start_, st.q.data(), st.v.data(), row.data(), st.lambda.data());
+      check_finite(outputs, row, t_start_, sys, st.q, st.v);
       sink.row(t_start_, row.data());
       times.erase(times.begin());
     }
