@@ -49,23 +49,7 @@ class GeneralizedAlpha final : public NewmarkDaeIntegrator {
 }  // namespace
 
 IntegratorEntry generalized_alpha_entry() {
-  IntegratorCapabilities c;
-  c.declared = true;
-  c.adaptive = true;
-  c.fixed_step = true;
-  c.formulations = {"index-3"};
-  c.reads = {"rtol",
-             "atol",
-             "step",
-             "max_step",
-             "min_step",
-             "step_control",
-             "iteration",
-             "anderson_depth",
-             "max_iterations",
-             "formulation",
-             "penalty_stiffness",
-             "penalty_damping"};
+  IntegratorCapabilities c = newmark_capabilities();
   c.reads.push_back("rho_inf");
   return {"generalized-alpha", [] { return std::make_unique<GeneralizedAlpha>(); },
           "generalised-alpha (Chung-Hulbert 1993) on the second-order form", c};

@@ -62,23 +62,7 @@ class LinearAcceleration final : public NewmarkDaeIntegrator {
 }  // namespace
 
 IntegratorEntry linear_acceleration_entry() {
-  IntegratorCapabilities c;
-  c.declared = true;
-  c.adaptive = true;
-  c.fixed_step = true;
-  c.formulations = {"index-3"};  // on request (the default is penalty): it diverges
-  c.reads = {"rtol",
-             "atol",
-             "step",
-             "max_step",
-             "min_step",
-             "step_control",
-             "iteration",
-             "anderson_depth",
-             "max_iterations",
-             "formulation",
-             "penalty_stiffness",
-             "penalty_damping"};
+  IntegratorCapabilities c = newmark_capabilities();
   c.reads.push_back("balance_tol");
   return {"linear-acceleration", [] { return std::make_unique<LinearAcceleration>(); },
           "the paper's linear-acceleration iteration (Newmark beta = 1/6)", c};

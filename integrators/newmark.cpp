@@ -8,6 +8,27 @@
 
 namespace evas {
 
+IntegratorCapabilities newmark_capabilities() {
+  IntegratorCapabilities c;
+  c.declared = true;
+  c.adaptive = true;
+  c.fixed_step = true;
+  c.formulations = {"index-3"};  // linear-acceleration: on request only (it diverges)
+  c.reads = {"rtol",
+             "atol",
+             "step",
+             "max_step",
+             "min_step",
+             "step_control",
+             "iteration",
+             "anderson_depth",
+             "max_iterations",
+             "formulation",
+             "penalty_stiffness",
+             "penalty_damping"};
+  return c;
+}
+
 void NewmarkIntegrator::setup() {
   par_ = parameters();
   it_ = s_.iteration == Iteration::method_default ? par_.iteration : s_.iteration;

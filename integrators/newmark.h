@@ -79,6 +79,11 @@
 
 namespace evas {
 
+/// What the Newmark family declares (integrator.h): adaptive or fixed steps,
+/// the index-3 form for constraints, the settings both methods read; each
+/// method adds its own (rho_inf, balance_tol).
+IntegratorCapabilities newmark_capabilities();
+
 class NewmarkIntegrator : public FixedStepIntegrator {
  public:
   struct Parameters {
