@@ -22,6 +22,8 @@
 #include <limits>
 #include <sstream>
 
+#include "elements/param_binding.h"
+
 namespace evas {
 
 namespace {
@@ -468,58 +470,37 @@ ElementType journal_bearing_element_type() {
       "force k_c (e - eps_max c)^n if contact_stiffness > 0, else a run error; e >= c is "
       "always an error. See docs/elements-journal-bearing.md.";
   t.num_markers = 2;
-  ParamSpec method;
-  method.key = "method";
-  method.kind = ParamSpec::Kind::Text;
-  method.doc =
-      "film-force integral: 'ocvirk' = closed form (Sommerfeld substitution) over the "
-      "positive-pressure half circle, 'quadrature' = Gauss-Legendre with n_delta points";
-  method.choices = {"ocvirk", "quadrature"};
-  method.default_text = "ocvirk";
-  t.params = {
-      scalar_param("radius", "m", "journal radius R", true, 0.0, 1e-300),
-      scalar_param("width", "m", "bearing width B", true, 0.0, 1e-300),
-      scalar_param("clearance", "m", "radial clearance c", true, 0.0, 1e-300),
-      scalar_param("viscosity", "Pa s", "dynamic viscosity eta of the oil", true, 0.0, 0.0),
-      method,
-      scalar_param("n_delta", "-", "quadrature points in the circumferential direction (integer)",
-                   false, 64, 2, 4096),
-      scalar_param("halves", "-",
-                   "1: one station; 2: two axial stations at +-B/(2 sqrt 5) (paper Fig. 6), a "
-                   "tilted journal gets a moment",
-                   false, 1, 1, 2),
-      scalar_param("eps_max", "-", "largest eccentricity ratio of the film alone", false, 0.98, 0.0,
-                   0.999999),
-      scalar_param(
-          "contact_stiffness", "N/m^n",
-          "asperity contact coefficient k_c above eps_max (0: exceeding eps_max is an error)",
-          false, 0.0, 0.0),
-      scalar_param("contact_exponent", "-", "exponent n of the contact law", false, 1.5, 1.0, 10.0),
-      scalar_param("journal_speed", "rad/s",
-                   "spin added to the relative spin (journal bodies that carry no rotation)", false,
-                   0.0, -1e300),
-  };
+  using P = JournalBearingParams;
+  static const ParamBinding<P> binding =
+      ParamBinding<P>()
+          .required(&P::radius, "radius", "m", "journal radius R", 1e-300)
+          .required(&P::width, "width", "m", "bearing width B", 1e-300)
+          .required(&P::clearance, "clearance", "m", "radial clearance c", 1e-300)
+          .required(&P::viscosity, "viscosity", "Pa s", "dynamic viscosity eta of the oil", 0.0)
+          .flag(&P::closed_form, "method",
+                "film-force integral: 'ocvirk' = closed form (Sommerfeld substitution) over the "
+                "positive-pressure half circle, 'quadrature' = Gauss-Legendre with n_delta points",
+                {"ocvirk", "quadrature"}, "ocvirk")
+          .whole(&P::n_delta, "n_delta", "-",
+                 "quadrature points in the circumferential direction (integer)", 2, 4096)
+          .whole(&P::halves, "halves", "-",
+                 "1: one station; 2: two axial stations at +-B/(2 sqrt 5) (paper Fig. 6), a "
+                 "tilted journal gets a moment",
+                 1, 2)
+          .number(&P::eps_max, "eps_max", "-", "largest eccentricity ratio of the film alone", 0.0,
+                  0.999999)
+          .number(&P::contact_stiffness, "contact_stiffness", "N/m^n",
+                  "asperity contact coefficient k_c above eps_max (0: exceeding eps_max is an "
+                  "error)",
+                  0.0)
+          .number(&P::contact_exponent, "contact_exponent", "-", "exponent n of the contact law",
+                  1.0, 10.0)
+          .number(&P::journal_speed, "journal_speed", "rad/s",
+                  "spin added to the relative spin (journal bodies that carry no rotation)");
+  t.params = binding.specs();
   t.make = [](const std::string& name, const std::vector<int>& markers, const ParamValues& v) {
-    JournalBearingParams p;
-    p.radius = v.scalar("radius");
-    p.width = v.scalar("width");
-    p.clearance = v.scalar("clearance");
-    p.viscosity = v.scalar("viscosity");
-    p.closed_form = v.text("method") == "ocvirk";
-    const double nd = v.scalar("n_delta"), hv = v.scalar("halves");
-    if (nd != std::floor(nd))
-      throw InputError("journal bearing '" + name + "': parameter 'n_delta' = " + fmt(nd) +
-                       " must be an integer");
-    if (hv != 1.0 && hv != 2.0)
-      throw InputError("journal bearing '" + name + "': parameter 'halves' = " + fmt(hv) +
-                       " must be 1 or 2");
-    p.n_delta = static_cast<int>(nd);
-    p.halves = static_cast<int>(hv);
-    p.eps_max = v.scalar("eps_max");
-    p.contact_stiffness = v.scalar("contact_stiffness");
-    p.contact_exponent = v.scalar("contact_exponent");
-    p.journal_speed = v.scalar("journal_speed");
-    return std::make_unique<JournalBearing>(name, markers, p);
+    return std::make_unique<JournalBearing>(name, markers,
+                                            binding.read(v, "journal bearing '" + name + "'"));
   };
   return t;
 }

@@ -45,14 +45,16 @@
 
 namespace evas {
 
+/// The defaults below are the scene's defaults (the parameter table is bound to
+/// these members, journal_bearing_element_type()); the first four are required.
 struct JournalBearingParams {
-  double radius = 0.0;     ///< journal radius R [m]
-  double width = 0.0;      ///< bearing width B [m]
-  double clearance = 0.0;  ///< radial clearance c [m]
-  double viscosity = 0.0;  ///< dynamic viscosity eta [Pa s]
-  bool closed_form = true;
-  int n_delta = 64;  ///< Gauss-Legendre points on the positive half circle
-  int halves = 1;    ///< 1 or 2 axial stations
+  double radius = 0.0;      ///< journal radius R [m] (required)
+  double width = 0.0;       ///< bearing width B [m] (required)
+  double clearance = 0.0;   ///< radial clearance c [m] (required)
+  double viscosity = 0.0;   ///< dynamic viscosity eta [Pa s] (required)
+  bool closed_form = true;  ///< method: ocvirk (true) or quadrature
+  int n_delta = 64;         ///< Gauss-Legendre points on the positive half circle
+  int halves = 1;           ///< 1 or 2 axial stations
   double eps_max = 0.98;
   double contact_stiffness = 0.0;  ///< k_c [N/m^n]
   double contact_exponent = 1.5;   ///< n [-]

@@ -3,6 +3,8 @@
 #include <cmath>
 #include <sstream>
 
+#include "elements/param_binding.h"
+
 namespace evas {
 
 namespace {
@@ -247,9 +249,6 @@ void PistonConrod::channel_values(double t, const MarkerMotion* m, double* out) 
 // Declaration.
 
 ElementType piston_conrod_element_type() {
-  auto axis = [](const std::string& key, const std::string& doc, const Vec3& d) {
-    return vector_param(key, ParamSpec::Kind::Vector3, "-", doc, {d.x(), d.y(), d.z()});
-  };
   ParamSpec pressure_file = text_param(
       "pressure_file",
       "cylinder pressure table over 720 deg, relative to the scene file (empty: no gas force)", {},
@@ -267,89 +266,70 @@ ElementType piston_conrod_element_type() {
       "Mode prescribed: explicit in time (paper Step 3); mode coupled: crank angle from the "
       "markers, reciprocating inertia implicit. See docs/elements-piston-motor.md.";
   t.num_markers = 3;
-  t.params = {
-      scalar_param("crank_radius", "m", "crank radius R (half the stroke)", true, 0, 1e-6),
-      scalar_param("conrod_length", "m", "conrod length L, pin to crankpin centres (> R)", true, 0,
-                   1e-6),
-      scalar_param("bore", "m", "cylinder bore (piston area pi bore^2 / 4)", true, 0, 1e-6),
-      scalar_param("piston_mass", "kg", "piston with rings and pin, m_p", true, 0, 0.0),
-      scalar_param("conrod_reciprocating_mass", "kg", "conrod mass lumped at the pin, m_1", false,
-                   0, 0.0),
-      scalar_param("conrod_rotating_mass", "kg", "conrod mass lumped at the crankpin, m_2", false,
-                   0, 0.0),
-      axis("cylinder_axis", "cylinder axis in block axes, from the crank axis towards the head",
-           Vec3::UnitZ()),
-      axis("crank_axis",
-           "crank axis in block axes; positive crank rotation is right-handed about it",
-           Vec3::UnitX()),
-      scalar_param(
-          "firing_phase", "deg",
-          "crank angle at which this cylinder is at firing TDC (0..720; e.g. 0/180/540/360 for "
-          "an in-line four firing 1-3-4-2)",
-          false, 0, 0.0, 720.0),
-      text_param("mode",
-                 "prescribed: theta = speed t + initial_angle - firing_phase (explicit in time); "
-                 "coupled: theta = rotation of the crankpin marker relative to the liner "
-                 "marker about crank_axis + initial_angle - firing_phase, reciprocating "
-                 "inertia solved implicitly",
-                 {"prescribed", "coupled"}, "prescribed"),
-      scalar_param("speed", "rad/s",
-                   "prescribed crank speed (3000 rpm = 314.159 rad/s); required in mode "
-                   "prescribed, not used in mode coupled",
-                   false, 0, 0.0),
-      scalar_param("initial_angle", "deg",
-                   "prescribed: crank angle at t = 0; coupled: crank angle of the reference "
-                   "(undeformed, unrotated) configuration",
-                   false, 0, -1e6, 1e6),
-      pressure_file,
-      scalar_param(
-          "crankcase_pressure", "Pa",
-          "pressure below the piston, subtracted from the table (1e5 for an absolute table "
-          "with an atmospheric crankcase)",
-          false, 0, 0.0),
-      text_param("side_force",
-                 "exact: exact piston acceleration; eq2: the paper's two-term series "
-                 "(Eq. 2, constant speed)",
-                 {"exact", "eq2"}, "exact"),
-      scalar_param("friction_coefficient", "-",
-                   "piston-liner friction coefficient mu (F_f = mu |N|)", false, 0, 0.0, 1.0),
-      scalar_param("friction_force", "N", "constant piston friction force F_0 (added to mu |N|)",
-                   false, 0, 0.0),
-      scalar_param("friction_velocity", "m/s",
-                   "smoothing speed v_s: friction = -tanh(piston velocity / v_s) (F_0 + mu |N|)",
-                   false, 0.05, 1e-9),
-      scalar_param("liner_height", "m",
-                   "height of the liner marker above the crank axis along the cylinder axis "
-                   "(0: conrod_length, the middle of the pin's travel)",
-                   false, 0, 0.0),
-  };
+  using P = PistonConrodParams;
+  static const ParamBinding<P> binding =
+      ParamBinding<P>()
+          .required(&P::crank_radius, "crank_radius", "m", "crank radius R (half the stroke)", 1e-6)
+          .required(&P::conrod_length, "conrod_length", "m",
+                    "conrod length L, pin to crankpin centres (> R)", 1e-6)
+          .required(&P::bore, "bore", "m", "cylinder bore (piston area pi bore^2 / 4)", 1e-6)
+          .required(&P::piston_mass, "piston_mass", "kg", "piston with rings and pin, m_p", 0.0)
+          .number(&P::rec_mass, "conrod_reciprocating_mass", "kg",
+                  "conrod mass lumped at the pin, m_1", 0.0)
+          .number(&P::rot_mass, "conrod_rotating_mass", "kg",
+                  "conrod mass lumped at the crankpin, m_2", 0.0)
+          .vec3(&P::cylinder_axis, "cylinder_axis", "-",
+                "cylinder axis in block axes, from the crank axis towards the head")
+          .vec3(&P::crank_axis, "crank_axis", "-",
+                "crank axis in block axes; positive crank rotation is right-handed about it")
+          .number(&P::firing_phase_deg, "firing_phase", "deg",
+                  "crank angle at which this cylinder is at firing TDC (0..720; e.g. 0/180/540/360 "
+                  "for an in-line four firing 1-3-4-2)",
+                  0.0, 720.0)
+          .flag(&P::coupled, "mode",
+                "prescribed: theta = speed t + initial_angle - firing_phase (explicit in time); "
+                "coupled: theta = rotation of the crankpin marker relative to the liner "
+                "marker about crank_axis + initial_angle - firing_phase, reciprocating "
+                "inertia solved implicitly",
+                {"prescribed", "coupled"}, "coupled")
+          .number(&P::speed, "speed", "rad/s",
+                  "prescribed crank speed (3000 rpm = 314.159 rad/s); required in mode "
+                  "prescribed, not used in mode coupled",
+                  0.0)
+          .number(&P::initial_angle_deg, "initial_angle", "deg",
+                  "prescribed: crank angle at t = 0; coupled: crank angle of the reference "
+                  "(undeformed, unrotated) configuration",
+                  -1e6, 1e6)
+          .unbound(pressure_file)
+          .number(&P::crankcase_pressure, "crankcase_pressure", "Pa",
+                  "pressure below the piston, subtracted from the table (1e5 for an absolute table "
+                  "with an atmospheric crankcase)",
+                  0.0)
+          .flag(&P::eq2_side_force, "side_force",
+                "exact: exact piston acceleration; eq2: the paper's two-term series "
+                "(Eq. 2, constant speed)",
+                {"exact", "eq2"}, "eq2")
+          .number(&P::friction_coefficient, "friction_coefficient", "-",
+                  "piston-liner friction coefficient mu (F_f = mu |N|)", 0.0, 1.0)
+          .number(&P::friction_force, "friction_force", "N",
+                  "constant piston friction force F_0 (added to mu |N|)", 0.0)
+          .number(&P::friction_velocity, "friction_velocity", "m/s",
+                  "smoothing speed v_s: friction = -tanh(piston velocity / v_s) (F_0 + mu |N|)",
+                  1e-9)
+          .number(&P::liner_height, "liner_height", "m",
+                  "height of the liner marker above the crank axis along the cylinder axis "
+                  "(0: conrod_length, the middle of the pin's travel)",
+                  0.0);
+  t.params = binding.specs();
   t.make = [](const std::string& name, const std::vector<int>& markers, const ParamValues& v) {
     const std::string where = "piston-conrod '" + name + "'";
-    PistonConrodParams p;
-    p.coupled = v.text("mode") == "coupled";
-    if (p.coupled && v.text("side_force") == "eq2")
+    const PistonConrodParams p = binding.read(v, where);
+    if (p.coupled && p.eq2_side_force)
       throw InputError(where +
                        ": side_force 'eq2' (the paper's constant-speed series) needs mode "
                        "'prescribed'; mode 'coupled' uses the exact kinematics");
     if (!p.coupled && !v.given("speed"))
       throw InputError(where + ": parameter 'speed' is required in mode 'prescribed'");
-    p.crank_radius = v.scalar("crank_radius");
-    p.conrod_length = v.scalar("conrod_length");
-    p.bore = v.scalar("bore");
-    p.piston_mass = v.scalar("piston_mass");
-    p.rec_mass = v.scalar("conrod_reciprocating_mass");
-    p.rot_mass = v.scalar("conrod_rotating_mass");
-    p.cylinder_axis = v.vec3("cylinder_axis");
-    p.crank_axis = v.vec3("crank_axis");
-    p.firing_phase_deg = v.scalar("firing_phase");
-    p.speed = v.scalar("speed");
-    p.initial_angle_deg = v.scalar("initial_angle");
-    p.crankcase_pressure = v.scalar("crankcase_pressure");
-    p.eq2_side_force = v.text("side_force") == "eq2";
-    p.friction_coefficient = v.scalar("friction_coefficient");
-    p.friction_force = v.scalar("friction_force");
-    p.friction_velocity = v.scalar("friction_velocity");
-    p.liner_height = v.scalar("liner_height");
     std::shared_ptr<const PressureTable> gas;
     const std::string& file = v.text("pressure_file");
     if (!file.empty()) {

@@ -68,11 +68,13 @@ struct SliderCrank {
   double harmonic(int k) const;
 };
 
+/// The defaults below are the scene's defaults (the parameter table is bound to
+/// these members, piston_conrod_element_type()); the first four are required.
 struct PistonConrodParams {
-  double crank_radius = 0.058;         ///< R [m]
-  double conrod_length = 0.19;         ///< L [m]
-  double bore = 0.106;                 ///< [m]
-  double piston_mass = 1.0;            ///< m_p [kg]
+  double crank_radius = 0.0;           ///< R [m] (required)
+  double conrod_length = 0.0;          ///< L [m] (required)
+  double bore = 0.0;                   ///< [m] (required)
+  double piston_mass = 0.0;            ///< m_p [kg] (required)
   double rec_mass = 0.0;               ///< m_1, conrod share at the pin [kg]
   double rot_mass = 0.0;               ///< m_2, conrod share at the crankpin [kg]
   Vec3 cylinder_axis = Vec3::UnitZ();  ///< block axes, crank -> head
