@@ -256,7 +256,8 @@ inline std::string engine_table(const std::string& path) {
     s.rtol = 1e-9;
     s.atol = 1e-12;
     const study::RunData ref = study::run_case(c.src, s, channels);
-    if (ref.status != "completed") throw RunError(c.label + " reference: " + ref.message);
+    if (ref.status != study::CaseStatus::completed)
+      throw RunError(c.label + " reference: " + ref.message);
     std::cerr << c.label << " reference done (" << ref.stats.steps << " steps, " << ref.wall
               << " s)\n";
     const UnitCosts u = unit_costs(c.src);
@@ -281,7 +282,7 @@ inline std::string engine_table(const std::string& path) {
         if (r.step > 0.0) s.step = r.step;
         set_integrator_setting(s, "step_control", r.control);  // substep: failed steps as sub-steps
         study::RunData d = study::run_case(c.src, s, channels);
-        if (d.status != "completed")
+        if (d.status != study::CaseStatus::completed)
           throw RunError(c.label + " " + run_label(r) + ": " + d.message);
         if (rep > 0) d.wall = std::min(d.wall, best[k].wall);
         best[k] = std::move(d);

@@ -177,7 +177,7 @@ inline std::string scaling_table(const std::string& engine_path, const std::stri
       p.n = sc.model->size();
     }
     const study::RunData d = study::run_case_repeated(src, s, {}, 2);
-    if (d.status != "completed") throw RunError(label + ": " + d.message);
+    if (d.status != study::CaseStatus::completed) throw RunError(label + ": " + d.message);
     p.wall = d.wall;
     p.steps = d.stats.steps;
     p.us_per_step = d.wall / static_cast<double>(d.stats.steps) * 1e6;

@@ -37,7 +37,7 @@ void write_convergence(const Options& opt, ConvergenceResult& res, bool final) {
      << "|---|---:|---|---:|---:|---:|---:|---:|\n";
   for (std::size_t i = 0; i < res.cases.size(); ++i) {
     const auto& r = res.cases[i];
-    const bool ran = r.status != "not run";
+    const bool ran = r.status != CaseStatus::not_run;
     md << "| " << md_cell(r.c.label) << " | " << gnum(res.x[i], 6) << " | " << status_cell(r)
        << " | " << sci(r.error, 3) << " | " << gnum(res.pair_order[i], 3) << " | "
        << gnum(r.wall, 4) << " | " << (ran ? std::to_string(r.stats.steps) : "") << " | "
@@ -57,7 +57,7 @@ void write_convergence(const Options& opt, ConvergenceResult& res, bool final) {
   int n = 0;
   for (std::size_t i = 0; i < res.cases.size(); ++i) {
     const double e = res.cases[i].error;
-    if (res.cases[i].status != "completed" || !(e > 0) || !std::isfinite(e)) continue;
+    if (res.cases[i].status != CaseStatus::completed || !(e > 0) || !std::isfinite(e)) continue;
     data << gnum(res.x[i], 12) << " " << gnum(e, 12) << "\n";
     sx += std::log(res.x[i]);
     sy += std::log(e);
@@ -143,7 +143,7 @@ ConvergenceResult convergence(const Options& opt, const CaseInput& spec) {
     std::vector<double> e;
     int last = -1;
     for (std::size_t i = 0; i < res.cases.size(); ++i) {
-      const double err = res.cases[i].status == "completed" ? res.cases[i].error : kNaN;
+      const double err = res.cases[i].status == CaseStatus::completed ? res.cases[i].error : kNaN;
       e.push_back(err);
       res.pair_order[i] = kNaN;
       if (!(err > 0) || !std::isfinite(err)) continue;

@@ -68,6 +68,18 @@ class CaseSink : public run::RowSink {
 
 }  // namespace
 
+const char* to_text(CaseStatus s) {
+  switch (s) {
+    case CaseStatus::completed:
+      return "completed";
+    case CaseStatus::failed:
+      return "failed";
+    case CaseStatus::not_run:
+      break;
+  }
+  return "not run";
+}
+
 RunData run_case(const SceneSource& src, const IntegratorSettings& settings,
                  const std::vector<int>& channels, const RowCheck& check,
                  const std::function<bool()>& stop) {
@@ -82,13 +94,13 @@ RunData run_case(const SceneSource& src, const IntegratorSettings& settings,
         if (sr.outputs().channels()[static_cast<std::size_t>(i)].name == "crank_angle") crank = i;
     CaseSink sink(channels, crank, check, stop, d);
     const run::Outcome o = sr.perform(settings, sink);
-    d.status = o.completed() ? "completed" : "failed";
+    d.status = o.completed() ? CaseStatus::completed : CaseStatus::failed;
     d.message = o.message;
     d.stats = o.stats;
     d.wall = o.wall;
     rows = sink.rows();
   } catch (const std::exception& e) {
-    d.status = "failed";
+    d.status = CaseStatus::failed;
     d.message = e.what();
   }
   const long nr = d.rows();
@@ -103,10 +115,10 @@ RunData run_case_repeated(const SceneSource& src, const IntegratorSettings& sett
                           const std::vector<int>& channels, int repeats,
                           const std::function<bool()>& stop) {
   RunData best = run_case(src, settings, channels, nullptr, stop);
-  for (int k = 1; k < repeats && best.status == "completed"; ++k) {
+  for (int k = 1; k < repeats && best.status == CaseStatus::completed; ++k) {
     if (stop && stop()) break;
     RunData again = run_case(src, settings, channels, nullptr, stop);
-    if (again.status != "completed") return again;
+    if (again.status != CaseStatus::completed) return again;
     again.wall = std::min(again.wall, best.wall);
     best = std::move(again);
   }

@@ -30,9 +30,15 @@ struct SceneInfo {
 /// Parses the scene and builds its outputs once. Throws InputError.
 SceneInfo probe_scene(const SceneSource& src);
 
+/// Status of a study case (or of one run of it).
+enum class CaseStatus { not_run, completed, failed };
+
+/// "not run", "completed" or "failed": the text written to every file.
+const char* to_text(CaseStatus s);
+
 /// Collected output of one run.
 struct RunData {
-  std::string status = "not run";  ///< "completed", "failed" or "not run"
+  CaseStatus status = CaseStatus::not_run;
   std::string message;
   std::vector<double> time;
   std::vector<double> crank;  ///< crank angle per row (crank-angle grid)

@@ -15,6 +15,24 @@ namespace evas::study {
 
 using namespace detail;
 
+const char* to_text(StabilityStatus s) {
+  switch (s) {
+    case StabilityStatus::bracketed:
+      return "bracketed";
+    case StabilityStatus::stable_to_hmax:
+      return "stable up to HMAX";
+    case StabilityStatus::unstable_at_hmin:
+      return "unstable at HMIN";
+    case StabilityStatus::reference_failed:
+      return "reference failed";
+    case StabilityStatus::interrupted:
+      return "interrupted";
+    case StabilityStatus::not_run:
+      break;
+  }
+  return "not run";
+}
+
 // --- stability ------------------------------------------------------------------
 
 namespace {
@@ -28,8 +46,8 @@ void write_stability(const Options& opt, StabilityResult& res, const StabilityOp
   std::ostringstream csv;
   csv << csv_field(key) << ",status,h_stable,h_unstable,runs,reference_max,message\n";
   for (const auto& p : res.points)
-    csv << csv_field(p.value) << "," << csv_field(p.status) << "," << gnum(p.h_stable, 9) << ","
-        << gnum(p.h_unstable, 9) << "," << p.runs << "," << gnum(p.reference_max, 9) << ","
+    csv << csv_field(p.value) << "," << csv_field(to_text(p.status)) << "," << gnum(p.h_stable, 9)
+        << "," << gnum(p.h_unstable, 9) << "," << p.runs << "," << gnum(p.reference_max, 9) << ","
         << csv_field(p.message) << "\n";
   write_file_atomic(dir / "stability.csv", csv.str());
   info.files.push_back((dir / "stability.csv").string());
@@ -52,8 +70,9 @@ void write_stability(const Options& opt, StabilityResult& res, const StabilityOp
      << " | status | largest stable step [s] | smallest unstable step [s] | runs | why unstable |\n"
      << "|---|---|---:|---:|---:|---|\n";
   for (const auto& p : res.points)
-    md << "| " << md_cell(p.value) << " | " << p.status << " | " << gnum(p.h_stable, 6) << " | "
-       << gnum(p.h_unstable, 6) << " | " << p.runs << " | " << md_cell(p.message, 90) << " |\n";
+    md << "| " << md_cell(p.value) << " | " << to_text(p.status) << " | " << gnum(p.h_stable, 6)
+       << " | " << gnum(p.h_unstable, 6) << " | " << p.runs << " | " << md_cell(p.message, 90)
+       << " |\n";
   write_file_atomic(dir / "stability.md", md.str());
   info.files.push_back((dir / "stability.md").string());
 
@@ -176,7 +195,7 @@ StabilityResult stability(const Options& opt, const CaseInput& spec, const Stabi
                 : run_reference(opt, src, info, s.channels, s.names, s.units);
     } catch (const ReferenceFailed& e) {
       if (res.sweep_key.empty()) throw;
-      p.status = "reference failed";
+      p.status = StabilityStatus::reference_failed;
       p.message = e.what();
       say(opt, "evas study: " + tag + e.what());
       write_stability(opt, res, so, false);
@@ -217,30 +236,30 @@ StabilityResult stability(const Options& opt, const CaseInput& spec, const Stabi
       };
       const RunData d = run_case(src, st, s.channels, check, opt.stop);
       ++p.runs;
-      const bool ok = d.status == "completed";
+      const bool ok = d.status == CaseStatus::completed;
       why = ok ? "" : d.message;
       say(opt, "evas study: " + tag + "h = " + gnum(h, 6) +
                    " s: " + (ok ? std::string("stable") : "unstable: " + d.message));
       return ok;
     };
     if (trial(so.h_max)) {
-      p.status = "stable up to HMAX";
+      p.status = StabilityStatus::stable_to_hmax;
       p.h_stable = so.h_max;
     } else {
       p.h_unstable = so.h_max;
       p.message = why;
       if (stopped(opt)) {
-        p.status = "interrupted";
+        p.status = StabilityStatus::interrupted;
       } else if (!trial(so.h_min)) {
-        p.status = "unstable at HMIN";
+        p.status = StabilityStatus::unstable_at_hmin;
         p.h_unstable = so.h_min;
         p.message = why;
       } else {
         p.h_stable = so.h_min;
-        p.status = "bracketed";
+        p.status = StabilityStatus::bracketed;
         for (int i = 0; i < so.bisections; ++i) {
           if (stopped(opt)) {
-            p.status = "interrupted";
+            p.status = StabilityStatus::interrupted;
             break;
           }
           const double mid = std::sqrt(p.h_stable * p.h_unstable);
@@ -254,8 +273,8 @@ StabilityResult stability(const Options& opt, const CaseInput& spec, const Stabi
         }
       }
     }
-    say(opt, "evas study: " + tag + p.status + ", largest stable step " + gnum(p.h_stable, 6) +
-                 " s" +
+    say(opt, "evas study: " + tag + to_text(p.status) + ", largest stable step " +
+                 gnum(p.h_stable, 6) + " s" +
                  (std::isnan(p.h_unstable) ? "" : ", unstable at " + gnum(p.h_unstable, 6) + " s"));
     write_stability(opt, res, so, false);
   }

@@ -72,7 +72,7 @@ struct Reference {
 /// One row of a study table.
 struct CaseResult {
   Case c;
-  std::string status = "not run";  ///< completed, failed, not run
+  CaseStatus status = CaseStatus::not_run;
   std::string message;
   double error = std::numeric_limits<double>::quiet_NaN();
   double wall = std::numeric_limits<double>::quiet_NaN();
@@ -125,12 +125,26 @@ struct StabilityOptions {
   int bisections = 12;
 };
 
+/// Outcome of the stability search at one sweep value: bracketed (limit
+/// between h_stable and h_unstable), stable up to HMAX, unstable at HMIN,
+/// reference failed, interrupted or not run.
+enum class StabilityStatus {
+  not_run,
+  bracketed,
+  stable_to_hmax,
+  unstable_at_hmin,
+  reference_failed,
+  interrupted
+};
+
+/// "not run", "bracketed", "stable up to HMAX", "unstable at HMIN",
+/// "reference failed" or "interrupted": the text written to every file.
+const char* to_text(StabilityStatus s);
+
 /// Result of the search at one sweep value.
 struct StabilityPoint {
   std::string value;  ///< sweep value ("" without sweep)
-  /// "bracketed" (limit between h_stable and h_unstable), "stable up to HMAX",
-  /// "unstable at HMIN", "reference failed", "interrupted" or "not run"
-  std::string status = "not run";
+  StabilityStatus status = StabilityStatus::not_run;
   double h_stable = std::numeric_limits<double>::quiet_NaN();    ///< largest stable step found
   double h_unstable = std::numeric_limits<double>::quiet_NaN();  ///< smallest unstable step found
   std::string message;  ///< why h_unstable is unstable (or the reference failure)

@@ -28,12 +28,12 @@ CaseResult evaluate(const Case& c, const RunData& d, const Reference& ref,
   r.wall = d.wall;
   r.rows = d.rows();
   r.stats = d.stats;
-  if (d.status != "completed") return r;
+  if (d.status != CaseStatus::completed) return r;
   bool same = d.time.size() == ref.time.size();
   for (std::size_t i = 0; same && i < d.time.size(); ++i)
     same = same_time(d.time[i], ref.time[i], scale);
   if (!same) {
-    r.status = "failed";
+    r.status = CaseStatus::failed;
     r.message = "the output times differ from the reference's";
     return r;
   }
@@ -44,11 +44,11 @@ CaseResult evaluate(const Case& c, const RunData& d, const Reference& ref,
 std::string case_line(std::size_t k, std::size_t n, const CaseResult& r) {
   std::ostringstream os;
   os << "evas study: [" << k << "/" << n << "] " << r.c.label << ": ";
-  if (r.status == "completed")
+  if (r.status == CaseStatus::completed)
     os << "error " << sci(r.error, 3) << ", " << gnum(r.wall, 3) << " s, " << r.stats.steps
        << " steps, " << r.stats.residual_evals << " residuals";
   else
-    os << r.status << (r.message.empty() ? "" : ": " + r.message);
+    os << to_text(r.status) << (r.message.empty() ? "" : ": " + r.message);
   return os.str();
 }
 
@@ -140,7 +140,7 @@ Reference run_reference(const Options& opt, const SceneSource& src, const SceneI
   const Case c = reference_case(opt.reference, info.integrator);
   say(opt, "evas study: reference " + c.label + " ...");
   RunData d = run_case(src, c.settings, channels, nullptr, opt.stop);
-  if (d.status != "completed")
+  if (d.status != CaseStatus::completed)
     throw ReferenceFailed("the reference run '" + c.label + "' failed: " + d.message);
   if (d.time.size() != info.times.size())
     throw ReferenceFailed("the reference run '" + c.label + "' gave " +
@@ -274,7 +274,7 @@ std::vector<Column> case_columns(const std::vector<CaseResult>& rows) {
     text(info.key, "settings/" + info.key,
          [&](const CaseResult& r) { return get_integrator_setting(r.c.settings, info.key); });
   }
-  text("status", "status", [](const CaseResult& r) { return r.status; });
+  text("status", "status", [](const CaseResult& r) { return std::string(to_text(r.status)); });
   text("message", "message", [](const CaseResult& r) { return r.message; });
   num("error", "error", Column::Kind::Real, [](const CaseResult& r) { return r.error; });
   num("wall", "wall", Column::Kind::Real, [](const CaseResult& r) { return r.wall; });
@@ -283,8 +283,9 @@ std::vector<Column> case_columns(const std::vector<CaseResult>& rows) {
     const std::string name = keys.count(f.name) ? std::string(f.name) + "_taken" : f.name;
     const auto get = f.get;
     num(name, std::string("stats/") + f.name,
-        f.integer ? Column::Kind::Integer : Column::Kind::Real,
-        [get](const CaseResult& r) { return r.status == "not run" ? kNaN : get(r.stats); });
+        f.integer ? Column::Kind::Integer : Column::Kind::Real, [get](const CaseResult& r) {
+          return r.status == CaseStatus::not_run ? kNaN : get(r.stats);
+        });
   }
   return cols;
 }
@@ -361,8 +362,8 @@ std::string md_header(const std::string& title, const StudyInfo& info, const Opt
 }
 
 std::string status_cell(const CaseResult& r) {
-  if (r.status == "failed") return "failed: " + md_cell(r.message, 70);
-  return r.status;
+  if (r.status == CaseStatus::failed) return "failed: " + md_cell(r.message, 70);
+  return to_text(r.status);
 }
 
 void write_reference_h5(hid_t file, const Reference& ref, const std::vector<int>& rows) {

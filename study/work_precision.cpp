@@ -36,7 +36,7 @@ void plot_work_precision(const Options& opt, const WorkPrecisionResult& res, Stu
   std::map<std::string, std::vector<const CaseResult*>> fam;
   std::vector<std::string> order;
   for (const auto& r : res.cases) {
-    if (r.status != "completed" || !(r.error > 0.0) || !std::isfinite(r.error)) continue;
+    if (r.status != CaseStatus::completed || !(r.error > 0.0) || !std::isfinite(r.error)) continue;
     const std::string f = family_of(r.c);
     if (!fam.count(f)) order.push_back(f);
     fam[f].push_back(&r);
@@ -115,7 +115,7 @@ void write_work_precision(const Options& opt, WorkPrecisionResult& res,
         "iterations | rejected steps | substeps |\n"
         "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
   for (const auto& r : res.cases) {
-    const bool ran = r.status != "not run";
+    const bool ran = r.status != CaseStatus::not_run;
     auto n = [&](long v) { return ran ? std::to_string(v) : std::string(); };
     md << "| " << md_cell(r.c.label) << " | " << status_cell(r) << " | " << sci(r.error, 2) << " | "
        << gnum(r.wall, 4) << " | " << n(r.stats.steps) << " | " << n(r.stats.residual_evals)

@@ -76,7 +76,8 @@ Rows by_study(const std::string& scene_path, const IntegratorSettings& s) {
   std::vector<int> all(info.channels.size());
   for (std::size_t i = 0; i < all.size(); ++i) all[i] = static_cast<int>(i);
   const study::RunData d = study::run_case(src, s, all);
-  EXPECT_EQ(d.status, "completed") << d.message;
+  EXPECT_EQ(d.status, study::CaseStatus::completed)
+      << study::to_text(d.status) << ": " << d.message;
   Rows r;
   r.time = d.time;
   for (const auto& c : info.channels) r.names.push_back(c.name);

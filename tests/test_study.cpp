@@ -350,6 +350,24 @@ TEST(StudyMeasure, ErrorIsRelativeToEachChannelsAmplitude) {
   EXPECT_EQ(select_channels(cj, "pin.*.g"), (std::vector<int>{1}));
 }
 
+// --- status text ---------------------------------------------------------------------
+
+// The enums are written as these exact words (csv, md, h5, console).
+TEST(StudyStatus, TextIsTheWordTheFilesHold) {
+  EXPECT_STREQ(to_text(CaseStatus::not_run), "not run");
+  EXPECT_STREQ(to_text(CaseStatus::completed), "completed");
+  EXPECT_STREQ(to_text(CaseStatus::failed), "failed");
+  EXPECT_EQ(RunData{}.status, CaseStatus::not_run);
+  EXPECT_EQ(CaseResult{}.status, CaseStatus::not_run);
+  EXPECT_STREQ(to_text(StabilityStatus::not_run), "not run");
+  EXPECT_STREQ(to_text(StabilityStatus::bracketed), "bracketed");
+  EXPECT_STREQ(to_text(StabilityStatus::stable_to_hmax), "stable up to HMAX");
+  EXPECT_STREQ(to_text(StabilityStatus::unstable_at_hmin), "unstable at HMIN");
+  EXPECT_STREQ(to_text(StabilityStatus::reference_failed), "reference failed");
+  EXPECT_STREQ(to_text(StabilityStatus::interrupted), "interrupted");
+  EXPECT_EQ(StabilityPoint{}.status, StabilityStatus::not_run);
+}
+
 // --- work-precision ------------------------------------------------------------------
 
 TEST(StudyWorkPrecision, FailedCaseIsRecordedAndTheOthersHaveFiniteErrors) {
@@ -369,7 +387,7 @@ TEST(StudyWorkPrecision, FailedCaseIsRecordedAndTheOthersHaveFiniteErrors) {
   EXPECT_FALSE(res.info.interrupted);
   for (std::size_t i = 0; i + 1 < res.cases.size(); ++i) {
     const auto& r = res.cases[i];
-    EXPECT_EQ(r.status, "completed") << r.c.label << ": " << r.message;
+    EXPECT_EQ(r.status, CaseStatus::completed) << r.c.label << ": " << r.message;
     EXPECT_TRUE(std::isfinite(r.error)) << r.c.label;
     EXPECT_LT(r.error, 0.2) << r.c.label;
     EXPECT_GT(r.stats.steps, 0) << r.c.label;
@@ -377,7 +395,7 @@ TEST(StudyWorkPrecision, FailedCaseIsRecordedAndTheOthersHaveFiniteErrors) {
   }
   EXPECT_LT(res.cases[1].error, res.cases[0].error);  // tighter tolerance, smaller error
   const auto& bad = res.cases.back();
-  EXPECT_EQ(bad.status, "failed");
+  EXPECT_EQ(bad.status, CaseStatus::failed);
   EXPECT_FALSE(bad.message.empty());
   EXPECT_TRUE(std::isnan(bad.error));
   std::cout << "failed case: " << bad.c.label << ": " << bad.message << "\n";
@@ -499,7 +517,7 @@ TEST(StudyWorkPrecision, ReferenceFileMatchesChannelsByNameAndTimes) {
     s.rtol = 1e-10;
     s.atol = 1e-14;
     const RunData d = run_case(src, s, all);
-    ASSERT_EQ(d.status, "completed") << d.message;
+    ASSERT_EQ(d.status, CaseStatus::completed) << d.message;
     ResultsWriter::Options wo;
     ResultsWriter w((dir.path() / "ref.h5").string(), info.channels, wo);
     std::vector<double> row(static_cast<std::size_t>(d.y.cols()));
@@ -514,7 +532,7 @@ TEST(StudyWorkPrecision, ReferenceFileMatchesChannelsByNameAndTimes) {
   of.channels = "spring.f*";
   const auto b = work_precision(of, {{"ida rtol=1e-5", ""}});
   ASSERT_EQ(b.cases.size(), 1u);
-  EXPECT_EQ(b.cases[0].status, "completed");
+  EXPECT_EQ(b.cases[0].status, CaseStatus::completed) << b.cases[0].message;
   EXPECT_TRUE(std::isfinite(b.cases[0].error));
   EXPECT_LE(b.cases[0].error, a.cases[0].error * 1.0001);  // fewer channels, same reference
   // a scene with another end time does not fit the file
@@ -545,7 +563,7 @@ TEST(StudyConvergence, GeneralizedAlphaIsSecondOrderOnAnUndampedOscillator) {
   for (std::size_t i = 0; i < res.cases.size(); ++i) {
     std::cout << "step " << res.x[i] << ": error " << res.cases[i].error << ", order "
               << res.pair_order[i] << "\n";
-    EXPECT_EQ(res.cases[i].status, "completed") << res.cases[i].message;
+    EXPECT_EQ(res.cases[i].status, CaseStatus::completed) << res.cases[i].message;
   }
   std::cout << "observed order " << res.slope << " (omega h = " << oscillator_omega() * 4e-5
             << " .. " << oscillator_omega() * 5e-6 << ")\n";
@@ -594,10 +612,11 @@ TEST(StudyStability, LinearAccelerationLimitIsTwoRootThreeOverOmega) {
       stability(o, {"linear-acceleration iteration=newton step_control=fixed", ""}, so);
   ASSERT_EQ(res.points.size(), 1u);
   const auto& p = res.points[0];
-  std::cout << "omega = " << w << " rad/s (m = " << oscillator_mass() << " kg): " << p.status
-            << ", h omega stable " << p.h_stable * w << ", unstable " << p.h_unstable * w
-            << " (2 sqrt 3 = " << limit << "), " << p.runs << " runs; " << p.message << "\n";
-  EXPECT_EQ(p.status, "bracketed");
+  std::cout << "omega = " << w << " rad/s (m = " << oscillator_mass()
+            << " kg): " << to_text(p.status) << ", h omega stable " << p.h_stable * w
+            << ", unstable " << p.h_unstable * w << " (2 sqrt 3 = " << limit << "), " << p.runs
+            << " runs; " << p.message << "\n";
+  EXPECT_EQ(p.status, StabilityStatus::bracketed) << to_text(p.status);
   EXPECT_NEAR(p.h_stable * w, limit, 0.03 * limit);
   EXPECT_NEAR(p.h_unstable * w, limit, 0.03 * limit);
   for (const char* f : {"stability.csv", "stability.md"})
@@ -623,7 +642,8 @@ TEST(StudyStability, SweepAndUnconditionallyStableCase) {
   so.bisections = 0;
   const auto ga = stability(o, {"generalized-alpha rho_inf=1 step_control=fixed", ""}, so);
   ASSERT_EQ(ga.points.size(), 1u);
-  EXPECT_EQ(ga.points[0].status, "stable up to HMAX") << ga.points[0].message;
+  EXPECT_EQ(ga.points[0].status, StabilityStatus::stable_to_hmax)
+      << to_text(ga.points[0].status) << ": " << ga.points[0].message;
   EXPECT_EQ(ga.points[0].h_stable, so.h_max);
   EXPECT_NE(input_error([&] {
               stability(o, {"ida", ""}, so);
@@ -635,7 +655,8 @@ TEST(StudyStability, SweepAndUnconditionallyStableCase) {
   ASSERT_EQ(sw.points.size(), 2u);
   EXPECT_EQ(sw.sweep_key, "spring.stiffness");
   EXPECT_EQ(sw.points[1].value, "[1e6,1e6,1e6]");
-  for (const auto& p : sw.points) EXPECT_EQ(p.status, "stable up to HMAX") << p.message;
+  for (const auto& p : sw.points)
+    EXPECT_EQ(p.status, StabilityStatus::stable_to_hmax) << to_text(p.status) << ": " << p.message;
   EXPECT_TRUE(fs::exists(dir.path() / "out" / "stability.csv"));
 }
 
