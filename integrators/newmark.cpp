@@ -150,29 +150,93 @@ void NewmarkIntegrator::solve_update(double t1, double h, double am, bool& refre
   }
 }
 
+// Fixed point and Anderson: the body operator's matrix at t1, refactorized
+// when it, or h, changed (body_ = false when the bodies carry no operator).
+void NewmarkIntegrator::prepare_body_operator(double t1, double h) {
+  p_->body_operator(t1, K_, C_);
+  ++stats_.jacobian_evals;
+  Eigen::Map<const Vec> kb(K_.valuePtr(), K_.nonZeros());
+  Eigen::Map<const Vec> cb(C_.valuePtr(), C_.nonZeros());
+  body_ = kb.lpNorm<Eigen::Infinity>() > 0.0 || cb.lpNorm<Eigen::Infinity>() > 0.0;
+  if (body_ && (!factored_ || h != h_factor_ || kb != kb_last_ || cb != cb_last_)) {
+    factorize(K_, C_, h);
+    kb_last_ = kb;
+    cb_last_ = cb;
+  }
+}
+
+// The paper's balance test on the residual rn of iterate k (before its update).
+NewmarkIntegrator::Verdict NewmarkIntegrator::balance_test(const IterationState& st, double t1,
+                                                           double h, int k, const Vec& a,
+                                                           double rn) {
+  const double am = par_.alpha_m, btol = s_.balance_tol;
+  // relative to the inertia over the step: a step that ends where the
+  // acceleration crosses zero is measured against the one it starts with
+  const double inertia = am == 0.0 ? a.norm() : ((1.0 - am) * a + am * a_).norm();
+  const double eps = rn / std::max({inertia, st.a_norm, s_.atol});
+  if (eps <= btol) {
+    stats_.max_step_iterations = std::max<long>(stats_.max_step_iterations, k);
+    return Verdict::converged;  // balanced: (q1_, v1_, a1_, f1_) consistent
+  }
+  if (k >= s_.max_iterations) {
+    fail("balance error " + format_number(eps) + " > balance_tol " + format_number(btol), t1, h, k);
+    return Verdict::failed;
+  }
+  // the paper's fixed point contracts linearly: once the rate is known, give up
+  // on a step that cannot balance within max_iterations (sub-steps are cheaper)
+  if (it_ == Iteration::fixed_point && k >= 4) {
+    const double rho = std::cbrt(rn / rnorms_[static_cast<std::size_t>(k - 3)]);
+    const double needed = rho < 1.0 ? std::log(eps / btol) / -std::log(rho) : 1e300;
+    if (k + needed > 1.5 * s_.max_iterations) {
+      fail("balance error " + format_number(eps) + " > balance_tol " + format_number(btol) +
+               " and would not fall below it within " +
+               "max_iterations = " + std::to_string(s_.max_iterations),
+           t1, h, k);
+      return Verdict::failed;
+    }
+  }
+  return Verdict::go_on;
+}
+
+// The increment test after update k: the last update dn, or from the second
+// update on, the rest of a linearly converging iteration, rate / (1 - rate) dn
+// with rate = dn / (the update before); with adaptive steps the error test's
+// norm of the implied q, v changes (update_norm). On convergence the state is
+// brought to a and f1_ to the balance it implies.
+NewmarkIntegrator::Verdict NewmarkIntegrator::increment_test(IterationState& st, double t1,
+                                                             double h, int k, const Vec& a) {
+  const double am = par_.alpha_m, af = par_.alpha_f;
+  const double dn = delta_.lpNorm<Eigen::Infinity>();
+  if (!std::isfinite(dn)) {
+    fail("the update is not finite", t1, h, k + 1);
+    return Verdict::failed;
+  }
+  const double tol = s_.rtol * a.lpNorm<Eigen::Infinity>() + s_.atol;
+  const double rate = k > 0 ? dn / st.prev : 1.0;
+  const bool converged = st.adaptive ? update_norm(h) <= 0.1
+                                     : dn <= tol || (rate < 0.9 && rate / (1.0 - rate) * dn <= tol);
+  if (converged) {
+    kinematics(h, a);
+    f1_ = -((1.0 - am) * a + am * a_ + af * f_) / (1.0 - af);
+    stats_.max_step_iterations = std::max<long>(stats_.max_step_iterations, k + 1);
+    return Verdict::converged;
+  }
+  if (it_ == Iteration::effective_mass && dn > 0.5 * st.prev && !st.fresh) st.refresh = true;
+  st.prev = dn;
+  return Verdict::go_on;
+}
+
 bool NewmarkIntegrator::iterate(double t, double h) {
   const double t1 = t + h;
   const double am = par_.alpha_m, af = par_.alpha_f;
-  const bool fixed_point = it_ == Iteration::fixed_point || it_ == Iteration::anderson;
-  if (fixed_point) {
-    p_->body_operator(t1, K_, C_);
-    ++stats_.jacobian_evals;
-    Eigen::Map<const Vec> kb(K_.valuePtr(), K_.nonZeros());
-    Eigen::Map<const Vec> cb(C_.valuePtr(), C_.nonZeros());
-    body_ = kb.lpNorm<Eigen::Infinity>() > 0.0 || cb.lpNorm<Eigen::Infinity>() > 0.0;
-    if (body_ && (!factored_ || h != h_factor_ || kb != kb_last_ || cb != cb_last_)) {
-      factorize(K_, C_, h);
-      kb_last_ = kb;
-      cb_last_ = cb;
-    }
-  }
+  if (it_ == Iteration::fixed_point || it_ == Iteration::anderson) prepare_body_operator(t1, h);
   // With adaptive steps the iteration stops in the norm of the error test, as
   // SUNDIALS' Newton does: the changes of q and v implied by the last update,
   // (beta h^2, gamma h) delta a, at 0.1 in the weighted RMS norm (fixed_step.h);
   // otherwise on the method's own test (balance or increment).
-  const bool adaptive = s_.step_control == StepControl::adaptive;
-  const bool balance = par_.balance && !adaptive;
-  const double btol = s_.balance_tol;
+  IterationState st;
+  st.adaptive = s_.step_control == StepControl::adaptive;
+  const bool balance = par_.balance && !st.adaptive;
   Vec& a = a1_;
   // predictor: the acceleration extrapolated linearly from the last two steps
   // (a_n at the start); a state it predicts that an element refuses falls back
@@ -180,11 +244,9 @@ bool NewmarkIntegrator::iterate(double t, double h) {
   bool extrapolated = has_history() && h_prev_ > 0.0;
   a = a_;
   if (extrapolated) a += (h / h_prev_) * (a_ - a_prev_);
-  const double a_norm = a_.norm();
+  st.a_norm = a_.norm();
   rnorms_.clear();
-  bool fresh = false;  // effective-mass: matrix evaluated during this step
-  bool refresh = it_ == Iteration::effective_mass && !have_jacobian_;
-  double prev = std::numeric_limits<double>::infinity();
+  st.refresh = it_ == Iteration::effective_mass && !have_jacobian_;
   for (int k = 0;; ++k) {
     kinematics(h, a);
     try {
@@ -208,37 +270,17 @@ bool NewmarkIntegrator::iterate(double t, double h) {
     rnorms_.push_back(rn);
     if (!std::isfinite(rn)) return fail("the residual is not finite", t1, h, k);
     if (balance) {
-      // relative to the inertia over the step: a step that ends where the
-      // acceleration crosses zero is measured against the one it starts with
-      const double inertia = am == 0.0 ? a.norm() : ((1.0 - am) * a + am * a_).norm();
-      const double eps = rn / std::max({inertia, a_norm, s_.atol});
-      if (eps <= btol) {
-        stats_.max_step_iterations = std::max<long>(stats_.max_step_iterations, k);
-        return true;  // balanced: (q1_, v1_, a1_, f1_) consistent
-      }
-      if (k >= s_.max_iterations)
-        return fail("balance error " + format_number(eps) + " > balance_tol " + format_number(btol),
-                    t1, h, k);
-      // the paper's fixed point contracts linearly: once the rate is known, give up
-      // on a step that cannot balance within max_iterations (sub-steps are cheaper)
-      if (it_ == Iteration::fixed_point && k >= 4) {
-        const double rho = std::cbrt(rn / rnorms_[static_cast<std::size_t>(k - 3)]);
-        const double needed = rho < 1.0 ? std::log(eps / btol) / -std::log(rho) : 1e300;
-        if (k + needed > 1.5 * s_.max_iterations)
-          return fail("balance error " + format_number(eps) + " > balance_tol " +
-                          format_number(btol) + " and would not fall below it within " +
-                          "max_iterations = " + std::to_string(s_.max_iterations),
-                      t1, h, k);
-      }
-      if (it_ == Iteration::effective_mass && k > 0 && rn > 0.5 * rnorms_[k - 1] && !fresh)
-        refresh = true;
+      const Verdict v = balance_test(st, t1, h, k, a, rn);
+      if (v != Verdict::go_on) return v == Verdict::converged;
+      if (it_ == Iteration::effective_mass && k > 0 && rn > 0.5 * rnorms_[k - 1] && !st.fresh)
+        st.refresh = true;
     } else if (k >= s_.max_iterations) {
       return fail("the iteration did not converge (last |delta a|_inf = " +
                       format_number(delta_.lpNorm<Eigen::Infinity>()) + ")",
                   t1, h, k);
     }
 
-    solve_update(t1, h, am, refresh, fresh);
+    solve_update(t1, h, am, st.refresh, st.fresh);
     ++stats_.nonlinear_iterations;
     if (it_ == Iteration::anderson)
       anderson_update(a, k);
@@ -246,24 +288,8 @@ bool NewmarkIntegrator::iterate(double t, double h) {
       a -= delta_;
 
     if (!balance) {
-      const double dn = delta_.lpNorm<Eigen::Infinity>();
-      if (!std::isfinite(dn)) return fail("the update is not finite", t1, h, k + 1);
-      // increment test on the error left in a: the last update dn, or from the
-      // second update on, the rest of a linearly converging iteration,
-      // rate / (1 - rate) dn with rate = dn / (the update before)
-      const double tol = s_.rtol * a.lpNorm<Eigen::Infinity>() + s_.atol;
-      const double rate = k > 0 ? dn / prev : 1.0;
-      const bool converged = adaptive
-                                 ? update_norm(h) <= 0.1
-                                 : dn <= tol || (rate < 0.9 && rate / (1.0 - rate) * dn <= tol);
-      if (converged) {
-        kinematics(h, a);
-        f1_ = -((1.0 - am) * a + am * a_ + af * f_) / (1.0 - af);
-        stats_.max_step_iterations = std::max<long>(stats_.max_step_iterations, k + 1);
-        return true;
-      }
-      if (it_ == Iteration::effective_mass && dn > 0.5 * prev && !fresh) refresh = true;
-      prev = dn;
+      const Verdict v = increment_test(st, t1, h, k, a);
+      if (v != Verdict::go_on) return v == Verdict::converged;
     }
   }
 }

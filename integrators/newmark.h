@@ -70,6 +70,7 @@
 //     engine the error did not follow rtol (docs/engine-speed.md).
 #pragma once
 
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -149,6 +150,21 @@ class NewmarkIntegrator : public FixedStepIntegrator {
   bool iterate(double t, double h);
   /// The update delta_ of one iterate by the iteration it_ (R_ the residual).
   void solve_update(double t1, double h, double am, bool& refresh, bool& fresh);
+  /// What iterate() keeps from one iterate to the next.
+  struct IterationState {
+    bool adaptive = false;  ///< the error test's norm stops the iteration
+    double a_norm = 0.0;    ///< ||a_n||
+    bool fresh = false;     ///< effective mass: matrix evaluated during this step
+    bool refresh = false;   ///< effective mass: evaluate it before the next update
+    double prev = std::numeric_limits<double>::infinity();  ///< the update before
+  };
+  enum class Verdict { go_on, converged, failed };
+  void prepare_body_operator(double t1, double h);
+  /// Convergence tests: the balance of the residual rn (before the update) or
+  /// the increment delta_ (after it). `failed` has called fail().
+  Verdict balance_test(const IterationState& st, double t1, double h, int k, const Vec& a,
+                       double rn);
+  Verdict increment_test(IterationState& st, double t1, double h, int k, const Vec& a);
   // S = (1 - am) I + (1 - af)(beta h^2 K + gamma h C), factorized by so_ (dense
   // LU up to n = 200, KLU above; integrators/second_order_ls.h)
   void factorize(const SpMat& K, const SpMat& C, double h);
