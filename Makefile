@@ -36,6 +36,7 @@ demo: build
 VALIDATION_OUT ?= validation-out
 validate: build
 	./validation/engine/run.sh $(BUILD) $(VALIDATION_OUT)
+	./validation/engine/runup.sh $(BUILD) $(VALIDATION_OUT)/runup
 
 # Every test (C++, CTest; Python, pytest), then the Python package installed
 # (scripts/install_python.sh) so that `python3 -c "import evas"` works.

@@ -11,6 +11,7 @@
 #include "integrators/settings.h"
 #include "io/scene.h"
 #include "run/folder_run.h"
+#include "study/scene_edit.h"
 
 namespace evas::cli {
 
@@ -68,6 +69,9 @@ int cmd_run(const std::vector<std::string>& args) {
       "KEY=VALUE: any integrator setting, repeatable (see --help-settings); applied after "
       "the scene's integrator block and the options above")(
       "help-settings", "list every integrator setting with its default and meaning")(
+      "param,p", po::value<std::vector<std::string>>()->composing(),
+      "ITEM.KEY=VALUE: change a scene parameter before the run, repeatable, as in evas study "
+      "(e.g. crank.lof.speed=418.879); the results file keeps the changed scene")(
       "t-end", po::value<double>(), "end time [s] (overrides the scene)")(
       "out", po::value<std::string>(), "output directory (default out/<scene name>)")(
       "csv", "also write DIR/results.csv")(
@@ -87,7 +91,11 @@ int cmd_run(const std::vector<std::string>& args) {
   const bool quiet = vm.count("quiet") > 0;
 
   // --- input: everything here exits 1 on InputError (caught in main) ---
-  Scene scene = read_scene(vm["scene"].as<std::string>());
+  Scene scene = vm.count("param")
+                    ? study::load_scene_source(vm["scene"].as<std::string>(),
+                                               vm["param"].as<std::vector<std::string>>())
+                          .parse()
+                    : read_scene(vm["scene"].as<std::string>());
   IntegratorSettings& set = scene.integrator;
   if (vm.count("integrator"))
     set_integrator_setting(set, "name", vm["integrator"].as<std::string>());

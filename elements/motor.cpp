@@ -7,7 +7,7 @@ namespace evas {
 Motor::Motor(std::string name, std::vector<int> markers, const Vec3& axis, double speed,
              double theta0, double K_r, double C_r, double K_c, double C_c)
     : Element(std::move(name), std::move(markers)),
-      w_(speed),
+      drive_(SpeedProfile::constant(speed)),
       th0_(theta0),
       K_(K_r),
       C_(C_r),
@@ -32,14 +32,14 @@ Motor::Motor(std::string name, std::vector<int> markers, const Vec3& axis, doubl
 }
 
 void Motor::internal_initial(double t, const MarkerMotion* m, double* z) const {
-  const double th1 = w_ * t + th0_;
+  const double th1 = drive_.angle_plus(t, th0_);
   const double th2 = a_.dot(m[0].psi - m[1].psi);
   const double th2d = a_.dot(m[0].w - m[1].w);
   // the disk turning with the crank (omega_d = theta_2_dot) and passing the
   // dynamometer's torque on: K_c (th_d - th2) = K_r (th1 - th_d) + C_r (w - th2d)
-  z[0] = (K_ * th1 + C_ * (w_ - th2d) + Kc_ * th2) / (K_ + Kc_);
+  z[0] = (K_ * th1 + C_ * (drive_.speed(t) - th2d) + Kc_ * th2) / (K_ + Kc_);
   // 0 = K_r (th1 - th_d) + C_r (w - om_d) - K_c (th_d - th2) - C_c (om_d - th2d)
-  z[1] = (K_ * (th1 - z[0]) + C_ * w_ - Kc_ * (z[0] - th2) + Cc_ * th2d) / (C_ + Cc_);
+  z[1] = (K_ * (th1 - z[0]) + C_ * drive_.speed(t) - Kc_ * (z[0] - th2) + Cc_ * th2d) / (C_ + Cc_);
 }
 
 double Motor::clutch_torque(const MarkerMotion* m, const double* z) const {
@@ -62,7 +62,8 @@ void Motor::evaluate_z(double t, const MarkerMotion* m, const double* z, MarkerL
 
 void Motor::internal_rate(double t, const MarkerMotion* m, const double* z, double* h) const {
   h[0] = z[1];
-  h[1] = K_ * (w_ * t + th0_ - z[0]) + C_ * (w_ - z[1]) - clutch_torque(m, z);
+  h[1] = K_ * (drive_.angle_plus(t, th0_) - z[0]) + C_ * (drive_.speed(t) - z[1]) -
+         clutch_torque(m, z);
 }
 
 void Motor::internal_derivatives(double, const MarkerMotion*, const double*, Mat& Dz, Mat& Hm,
@@ -81,7 +82,7 @@ void Motor::internal_derivatives(double, const MarkerMotion*, const double*, Mat
 }
 
 void Motor::torque(double t, const MarkerMotion* m, double& twist, double& T) const {
-  const double th1 = w_ * t + th0_;
+  const double th1 = drive_.angle_plus(t, th0_);
   const double th2 = a_.dot(m[0].psi - m[1].psi);
   const double th2d = a_.dot(m[0].w - m[1].w);
   twist = th2 - th1;
@@ -91,7 +92,7 @@ void Motor::torque(double t, const MarkerMotion* m, double& twist, double& T) co
     T = clutch_torque(m, z);
     return;
   }
-  T = -K_ * twist - C_ * (th2d - w_);
+  T = -K_ * twist - C_ * (th2d - drive_.speed(t));
 }
 
 void Motor::spring_damper_rows(double k, double c, Mat& D) const {
@@ -122,7 +123,7 @@ void Motor::channel_values_z(double t, const MarkerMotion* m, const double* z, d
   out[0] = disk_ ? clutch_torque(m, z) : T;
   out[1] = twist;
   if (!disk_) return;
-  out[2] = z[0] - (w_ * t + th0_);
+  out[2] = z[0] - (drive_.angle_plus(t, th0_));
   out[3] = z[1];
 }
 
@@ -160,7 +161,8 @@ ElementType motor_element_type() {
   t.type = "motor";
   t.doc =
       "Dynamometer drive (paper Fig. 7, Eqs. 4-5). Driver angle theta_1 = speed t + "
-      "initial_angle; torque T = -K_r (theta_2 - theta_1) - C_r (theta_2_dot - speed) on the "
+      "initial_angle (without its own speed: the integral of the crank's speed w(t)); torque T = "
+      "-K_r (theta_2 - theta_1) - C_r (theta_2_dot - speed) on the "
       "clutch marker (marker 1) about axis, with theta_2 = axis . (psi_clutch - psi_stator); "
       "the reaction -T acts on the stator marker (marker 2, usually ground).";
   t.num_markers = 2;
@@ -172,7 +174,10 @@ ElementType motor_element_type() {
   axis.default_value = {1.0, 0.0, 0.0};
   t.params = {
       axis,
-      scalar_param("speed", "rad/s", "driver speed w (3000 rpm = 314.159 rad/s)", true, 0, -1e300),
+      scalar_param("speed", "rad/s",
+                   "driver speed w (3000 rpm = 314.159 rad/s); omitted: the crank's (the body "
+                   "with a spin LOF), constant or a profile",
+                   false, 0, -1e300),
       scalar_param("initial_angle", "deg", "driver angle theta_0 at t = 0", false, 0, -1e300),
       scalar_param("stiffness", "N m/rad", "torsional clutch spring K_r", true, 0, 0.0),
       scalar_param("damping", "N m s/rad", "torsional damping C_r", false, 0, 0.0),
@@ -184,10 +189,12 @@ ElementType motor_element_type() {
       scalar_param("clutch_damping", "N m s/rad", "clutch damping C_c (with clutch_stiffness)",
                    false, 0, 0.0)};
   t.make = [](const std::string& name, const std::vector<int>& markers, const ParamValues& v) {
-    return std::make_unique<Motor>(name, markers, v.vec3("axis"), v.scalar("speed"),
-                                   v.scalar("initial_angle") * M_PI / 180.0, v.scalar("stiffness"),
-                                   v.scalar("damping"), v.scalar("clutch_stiffness"),
-                                   v.scalar("clutch_damping"));
+    auto e = std::make_unique<Motor>(name, markers, v.vec3("axis"), v.scalar("speed"),
+                                     v.scalar("initial_angle") * M_PI / 180.0,
+                                     v.scalar("stiffness"), v.scalar("damping"),
+                                     v.scalar("clutch_stiffness"), v.scalar("clutch_damping"));
+    if (!v.given("speed")) e->leave_speed_to_crank();
+    return e;
   };
   return t;
 }

@@ -1,7 +1,9 @@
 // Motor element (paper Fig. 7, Eqs. 4-5): a dynamometer drives the clutch
 // through a torsional spring-damper.
 //
-// Disk 1 (driver) turns at the prescribed angle theta_1 = w t + theta_0 (Eq. 4);
+// Disk 1 (driver) turns at the prescribed angle theta_1 = w t + theta_0 (Eq. 4),
+// or, without its own `speed`, follows the crank's speed profile w(t)
+// (model/speed_profile.h): theta_1 = integral_0^t w + theta_0;
 // disk 2 (the clutch) is marker 0, whose rotation about the unit axis a (G
 // components) is read relative to marker 1, the dynamometer's stator (usually a
 // ground marker):
@@ -53,6 +55,19 @@ class Motor : public Element {
   std::vector<Channel> channels() const override;
   void channel_values(double t, const MarkerMotion* m, double* out) const override;
 
+  /// The driver follows the crank's speed profile (the scene reader's
+  /// follow_speed); until then the element reports wants_speed().
+  void leave_speed_to_crank() { wants_crank_ = true; }
+  const SpeedProfile* own_speed() const override {
+    return wants_crank_ || following_ ? nullptr : &drive_;
+  }
+  bool wants_speed() const override { return wants_crank_; }
+  void follow_speed(const SpeedProfile& crank) override {
+    drive_ = crank;
+    wants_crank_ = false;
+    following_ = true;
+  }
+
   /// Twist theta_2 - theta_1 [rad] and clutch torque T [N m] at (t, motion)
   /// (with a clutch disk: at its quasi-static state).
   void torque(double t, const MarkerMotion* m, double& twist, double& T) const;
@@ -77,7 +92,9 @@ class Motor : public Element {
   /// Spring-damper derivative rows of D for stiffness k, damping c.
   void spring_damper_rows(double k, double c, Mat& D) const;
   Vec3 a_;
-  double w_, th0_, K_, C_, Kc_, Cc_;
+  SpeedProfile drive_;  // driver angle turned since t = 0 and speed
+  double th0_, K_, C_, Kc_, Cc_;
+  bool wants_crank_ = false, following_ = false;
   bool disk_;
 };
 

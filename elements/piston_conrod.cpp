@@ -56,7 +56,10 @@ double SliderCrank::acceleration_series(double theta, double w, int kmax) const 
 
 PistonConrod::PistonConrod(std::string name, std::vector<int> markers, const PistonConrodParams& p,
                            std::shared_ptr<const PressureTable> gas)
-    : Element(std::move(name), std::move(markers)), p_(p), gas_(std::move(gas)) {
+    : Element(std::move(name), std::move(markers)),
+      p_(p),
+      drive_(SpeedProfile::constant(p.speed)),
+      gas_(std::move(gas)) {
   const std::string where = "piston-conrod '" + this->name() + "'";
   if (this->markers().size() != 3)
     throw InputError(where + ": needs 3 markers (crankpin, liner, head)");
@@ -88,9 +91,37 @@ PistonConrod::PistonConrod(std::string name, std::vector<int> markers, const Pis
 }
 
 PistonConrod::State PistonConrod::state(double t) const {
-  const double w = p_.speed;
-  const double theta = w * t + (p_.initial_angle_deg - p_.firing_phase_deg) * kRad;
-  return state_at(theta, w, 0.0);
+  const double theta = drive_.angle_plus(t, (p_.initial_angle_deg - p_.firing_phase_deg) * kRad);
+  return state_at(theta, drive_.speed(t), drive_.acceleration(t));
+}
+
+void PistonConrod::follow_speed(const SpeedProfile& crank) {
+  if (p_.coupled) return;  // the markers carry the crank angle
+  if (p_.eq2_side_force && !crank.is_constant())
+    throw InputError("piston-conrod '" + name() +
+                     "': side_force 'eq2' (the paper's constant-speed series) cannot follow a "
+                     "varying crank speed; use side_force 'exact'");
+  if (crank.min_speed() < 0.0)
+    throw InputError("piston-conrod '" + name() + "': the crank turns at " +
+                     format_number(crank.min_speed()) +
+                     " rad/s; a prescribed piston's speed must not be negative (as its own "
+                     "'speed')");
+  if (gas_map_)
+    gas_map_->check_covers(crank.min_speed(), crank.max_speed(), "piston-conrod '" + name() + "'");
+  drive_ = crank;
+  wants_crank_ = false;
+  following_ = true;
+}
+
+void PistonConrod::set_pressure_map(std::shared_ptr<const PressureMap> map) {
+  const std::string where = "piston-conrod '" + name() + "'";
+  if (p_.coupled)
+    throw InputError(where +
+                     ": a pressure_map needs mode 'prescribed' (the table would depend on the "
+                     "crank speed, a state in mode 'coupled')");
+  if (gas_) throw InputError(where + ": give pressure_file or pressure_map, not both");
+  if (!wants_crank_) map->check_covers(drive_.min_speed(), drive_.max_speed(), where);
+  gas_map_ = std::move(map);
 }
 
 PistonConrod::State PistonConrod::state(double t, const MarkerMotion* m) const {
@@ -124,7 +155,9 @@ PistonConrod::State PistonConrod::state_at(double theta, double thd, double thdd
   s.xdd = p_.eq2_side_force ? -sc_.R * thd * thd * (cs + lam * std::cos(2 * theta))
                             : ddx * thd * thd + dx * thdd;
   const double dxdd = p_.eq2_side_force ? 0.0 : dx;  // d xdd / d thdd
-  s.p = gas_ ? (*gas_)(theta)-p_.crankcase_pressure : 0.0;
+  s.p = gas_map_ ? (*gas_map_)(theta, thd) - p_.crankcase_pressure
+        : gas_   ? (*gas_)(theta)-p_.crankcase_pressure
+                 : 0.0;
   s.Fc = s.p * area_;
   s.sin_phi = lam * sn;
   s.cos_phi = std::sqrt(1.0 - s.sin_phi * s.sin_phi);
@@ -254,6 +287,12 @@ ElementType piston_conrod_element_type() {
       "cylinder pressure table over 720 deg, relative to the scene file (empty: no gas force)", {},
       "");
   pressure_file.is_path = true;
+  ParamSpec pressure_map = text_param(
+      "pressure_map",
+      "pressure tables at several speeds: a file of 'speed_rpm table_file' lines, interpolated "
+      "linearly in the prescribed crank speed (mode prescribed; in place of pressure_file)",
+      {}, "");
+  pressure_map.is_path = true;
   ElementType t;
   t.type = "piston-conrod";
   t.doc =
@@ -262,7 +301,9 @@ ElementType piston_conrod_element_type() {
       "give it rotation), head (block, on the cylinder axis). Block axes = liner marker axes. "
       "Gas force F_c = (p(theta) - crankcase_pressure) A_p on the head; side force on the liner "
       "(moved to the pin height by a moment); crankpin force along the rod plus m_2 R w^2. "
-      "theta = speed t + initial_angle - firing_phase (0 = firing TDC; the table's cycle angle). "
+      "theta = speed t + initial_angle - firing_phase (0 = firing TDC; the table's cycle angle); "
+      "without its own speed the element follows the crank's speed profile w(t): theta = "
+      "integral of w + initial_angle - firing_phase. "
       "Mode prescribed: explicit in time (paper Step 3); mode coupled: crank angle from the "
       "markers, reciprocating inertia implicit. See docs/elements-piston-motor.md.";
   t.num_markers = 3;
@@ -287,20 +328,24 @@ ElementType piston_conrod_element_type() {
                   "for an in-line four firing 1-3-4-2)",
                   0.0, 720.0)
           .flag(&P::coupled, "mode",
-                "prescribed: theta = speed t + initial_angle - firing_phase (explicit in time); "
+                "prescribed: theta = speed t (or the integral of the crank's speed) + "
+                "initial_angle - "
+                "firing_phase (explicit in time); "
                 "coupled: theta = rotation of the crankpin marker relative to the liner "
                 "marker about crank_axis + initial_angle - firing_phase, reciprocating "
                 "inertia solved implicitly",
                 {"prescribed", "coupled"}, "coupled")
           .number(&P::speed, "speed", "rad/s",
-                  "prescribed crank speed (3000 rpm = 314.159 rad/s); required in mode "
-                  "prescribed, not used in mode coupled",
+                  "prescribed crank speed (3000 rpm = 314.159 rad/s) in mode prescribed; "
+                  "omitted: the crank's (the body with a spin LOF), constant or a profile; "
+                  "not used in mode coupled",
                   0.0)
           .number(&P::initial_angle_deg, "initial_angle", "deg",
                   "prescribed: crank angle at t = 0; coupled: crank angle of the reference "
                   "(undeformed, unrotated) configuration",
                   -1e6, 1e6)
           .unbound(pressure_file)
+          .unbound(pressure_map)
           .number(&P::crankcase_pressure, "crankcase_pressure", "Pa",
                   "pressure below the piston, subtracted from the table (1e5 for an absolute table "
                   "with an atmospheric crankcase)",
@@ -328,8 +373,6 @@ ElementType piston_conrod_element_type() {
       throw InputError(where +
                        ": side_force 'eq2' (the paper's constant-speed series) needs mode "
                        "'prescribed'; mode 'coupled' uses the exact kinematics");
-    if (!p.coupled && !v.given("speed"))
-      throw InputError(where + ": parameter 'speed' is required in mode 'prescribed'");
     std::shared_ptr<const PressureTable> gas;
     const std::string& file = v.text("pressure_file");
     if (!file.empty()) {
@@ -339,7 +382,19 @@ ElementType piston_conrod_element_type() {
         throw InputError(where + ": " + e.what());
       }
     }
-    return std::make_unique<PistonConrod>(name, markers, p, std::move(gas));
+    auto e = std::make_unique<PistonConrod>(name, markers, p, std::move(gas));
+    if (!v.given("speed")) e->leave_speed_to_crank();
+    if (const std::string& map = v.text("pressure_map"); !map.empty()) {
+      if (p.coupled) throw InputError(where + ": a pressure_map needs mode 'prescribed'");
+      if (!file.empty()) throw InputError(where + ": give pressure_file or pressure_map, not both");
+      try {
+        e->set_pressure_map(std::make_shared<const PressureMap>(PressureMap::read(map)));
+      } catch (const InputError& err) {
+        const std::string msg = err.what();
+        throw InputError(msg.rfind(where, 0) == 0 ? msg : where + ": " + msg);
+      }
+    }
+    return e;
   };
   return t;
 }

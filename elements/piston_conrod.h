@@ -29,7 +29,9 @@
 //   head      F = F_c e_c
 // Modes:
 //  `prescribed` (the paper's Step 3): theta_crank = w t + theta_0, loads explicit
-//     in time, state_dependent() false, D = 0.
+//     in time, state_dependent() false, D = 0. Without its own `speed` the
+//     element follows the crank's speed profile w(t) (model/speed_profile.h):
+//     theta_crank = integral_0^t w + theta_0, thd = w(t), thdd = w'(t).
 //  `coupled` (beyond the paper): the crank angle is the crankpin marker's rotation
 //     relative to the liner marker about e_a,
 //       theta_crank = e_a.(psi_pin - psi_liner) + theta_0,  thd = e_a.(w_pin - w_liner),
@@ -46,6 +48,7 @@
 #include <memory>
 
 #include "elements/gas_pressure.h"
+#include "elements/pressure_map.h"
 #include "elements/registry.h"
 #include "model/element.h"
 
@@ -138,9 +141,25 @@ class PistonConrod : public Element {
   State state_at(double theta, double thd, double thdd) const;
   const PistonConrodParams& params() const { return p_; }
 
+  /// Mode prescribed: the crank's speed profile replaces `speed` (the scene
+  /// reader's follow_speed); until then the element reports wants_speed().
+  void leave_speed_to_crank() { wants_crank_ = !p_.coupled; }
+  const SpeedProfile* own_speed() const override {
+    return p_.coupled || wants_crank_ || following_ ? nullptr : &drive_;
+  }
+  bool wants_speed() const override { return wants_crank_; }
+  void follow_speed(const SpeedProfile& crank) override;
+  /// Gas pressure from tables at several speeds (in place of one table), read
+  /// at the prescribed crank speed. Mode prescribed only; the speed (its own,
+  /// or the crank's when it follows) must stay inside the map's speeds.
+  void set_pressure_map(std::shared_ptr<const PressureMap> map);
+
  private:
   PistonConrodParams p_;
+  SpeedProfile drive_;  // mode prescribed: crank angle turned since t = 0, speed, acceleration
+  bool wants_crank_ = false, following_ = false;
   std::shared_ptr<const PressureTable> gas_;
+  std::shared_ptr<const PressureMap> gas_map_;  // in place of gas_ (set_pressure_map)
   SliderCrank sc_;
   Vec3 ec_, ea_, es_;  // block axes
   double area_, h_L_;

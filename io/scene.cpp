@@ -191,7 +191,7 @@ Scene parse_scene(const std::string& text, const std::string& path) {
   return scene;
 }
 
-Scene read_scene(const std::string& path) {
+std::string read_scene_text(const std::string& path) {
   std::error_code ec;
   const auto st = std::filesystem::status(path, ec);
   if (ec || !std::filesystem::exists(st))
@@ -207,7 +207,9 @@ Scene read_scene(const std::string& path) {
   if (!f) throw InputError(path + ": cannot open the scene file");
   std::stringstream ss;
   ss << f.rdbuf();
-  return parse_scene(ss.str(), path);
+  return ss.str();
 }
+
+Scene read_scene(const std::string& path) { return parse_scene(read_scene_text(path), path); }
 
 }  // namespace evas

@@ -44,6 +44,9 @@ struct Scene {
 };
 
 /// Reads a scene file; body files are resolved relative to its directory.
+/// The text of a scene file, checked first to be a regular file of at most
+/// 16 MiB (a device or pipe never ends). Throws InputError naming the file.
+std::string read_scene_text(const std::string& path);
 Scene read_scene(const std::string& path);
 /// Parses scene text as if read from `path` (for tests; `path` names the file
 /// in messages and anchors relative body-file paths).

@@ -8,6 +8,56 @@
 
 namespace evas::scene_detail {
 
+namespace {
+
+std::string speed_text(const SpeedProfile& s) {
+  if (s.is_constant()) return format_number(s.speeds()[0]) + " rad/s";
+  return "a profile of " + std::to_string(s.times().size()) + " points, " +
+         format_number(s.min_speed()) + " .. " + format_number(s.max_speed()) + " rad/s";
+}
+
+}  // namespace
+
+// The operating point's speed is stated once, by the crank: the spinning
+// body that carries the element's first marker (a piston's crankpin, the
+// motor's clutch), or else the one body with a spin LOF. An element that
+// prescribes a crank speed and gives none follows that body's profile; one
+// that gives its own must agree with it.
+void SceneReader::connect_crank_speed(Element& el, const Node& e, const std::string& item,
+                                      const Model& model) {
+  if (!el.wants_speed() && !el.own_speed()) return;
+  std::vector<const Body*> spins;
+  for (const auto& b : model.bodies())
+    if (b.lof.kind() == LofKind::Spin) spins.push_back(&b);
+  const Body* crank = nullptr;
+  const int first = el.markers().empty() ? -1 : model.markers()[el.markers()[0]].body;
+  if (first >= 0 && model.bodies()[first].lof.kind() == LofKind::Spin)
+    crank = &model.bodies()[first];
+  else if (spins.size() == 1)
+    crank = spins[0];
+  if (el.wants_speed()) {
+    if (!crank) {
+      std::vector<std::string> names;
+      for (const auto* b : spins) names.push_back(b->name);
+      fail(e, item,
+           spins.empty() ? "parameter 'speed' is required: no body has a spin LOF whose speed "
+                           "the element could follow"
+                         : "gives no 'speed', its first marker is not on a spinning body, and "
+                           "several bodies spin (" +
+                               join(names) + "): give the element's 'speed'");
+    }
+    el.follow_speed(crank->lof.speed_profile());
+    return;
+  }
+  if (!crank) return;
+  const SpeedProfile& w = crank->lof.speed_profile();
+  if (!el.own_speed()->same_as(w))
+    fail(e["speed"] ? e["speed"] : e, item,
+         "speed " + speed_text(*el.own_speed()) + " disagrees with body '" + crank->name +
+             "' (its spin LOF turns at " + speed_text(w) +
+             "); omit the element's 'speed' to follow the crank");
+}
+
 void SceneReader::read_element(const Node& e, std::size_t i, Model& model) {
   std::string item = "elements[" + std::to_string(i) + "]";
   expect_map(e, item);
@@ -100,7 +150,9 @@ void SceneReader::read_element(const Node& e, std::size_t i, Model& model) {
   }
   try {
     complete_params(*type, values, file_ + ":" + std::to_string(e.Mark().line + 1) + ": " + item);
-    model.add_element(type->make(name, idx, values));
+    std::unique_ptr<Element> element = type->make(name, idx, values);
+    connect_crank_speed(*element, e, item, model);
+    model.add_element(std::move(element));
   } catch (const InputError& err) {
     const std::string msg = err.what();
     if (msg.rfind(file_ + ":", 0) == 0) throw;

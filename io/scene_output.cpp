@@ -1,5 +1,6 @@
 // Scene files (see scene.h): the integrator block (integrators/settings.h)
 // and the output spec (grid, step, start, channels).
+#include <algorithm>
 #include <cmath>
 #include <map>
 
@@ -62,6 +63,25 @@ OutputSpec SceneReader::read_output(const Node& n, const Model& model, double t_
     if (model.bodies()[body].lof.kind() != LofKind::Spin)
       fail(b, item,
            "the crank-angle grid needs a body with a spin LOF; '" + out.crank_body + "' has none");
+    // the grid's rows are the times the crank passes whole steps: over the
+    // run its angle must keep moving one way, so the speed may start from
+    // standstill but neither reach zero later nor change sign (a profile stays
+    // between its knots, so the knots inside the run and its two ends decide)
+    const SpeedProfile& sp = model.bodies()[body].lof.speed_profile();
+    std::vector<double> w = {sp.speed(t_start), sp.speed(t_end)};
+    for (double k : sp.times())
+      if (k > t_start && k < t_end) w.push_back(sp.speed(k));
+    const double lo = *std::min_element(w.begin(), w.end());
+    const double hi = *std::max_element(w.begin(), w.end());
+    bool zero_later = sp.speed(t_end) == 0.0;
+    for (double k : sp.times())
+      if (k > t_start && k <= t_end && sp.speed(k) == 0.0) zero_later = true;
+    if ((lo < 0.0 && hi > 0.0) || zero_later)
+      fail(b, item,
+           "the crank-angle grid needs a crank that keeps turning one way; body '" +
+               out.crank_body + "' turns at " + number_text(lo) + " .. " + number_text(hi) +
+               " rad/s between t = " + number_text(t_start) + " and " + number_text(t_end) + " s" +
+               (zero_later ? ", down to standstill" : "") + " (use grid: time)");
   } else {
     if (n["body"]) fail(n["body"], item, "'body' applies to the crank-angle grid only");
     if (out.start_given && (out.start < t_start || out.start > t_end))

@@ -201,6 +201,7 @@ class SceneReader {
   Lof read_lof(const Node& l, const std::string& item) const;
   void read_marker(const Node& m, std::size_t i, Model& model);
   void read_element(const Node& e, std::size_t i, Model& model);
+  void connect_crank_speed(Element& el, const Node& e, const std::string& item, const Model& model);
   void read_joint(const Node& e, std::size_t i, Model& model);
   IntegratorSettings read_integrator(const Node& n) const;
   OutputSpec read_output(const Node& n, const Model& model, double t_start, double t_end) const;

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "model/marker.h"
+#include "model/speed_profile.h"
 
 namespace evas {
 
@@ -146,6 +147,21 @@ class Element {
 
   /// Finite-difference D (central differences, step scaled by the motion).
   void derivatives_fd(double t, const MarkerMotion* motion, Mat& D) const;
+
+  // --- The crank's speed (an operating point stated once) ---
+  // An element that prescribes a crank speed (a piston in mode prescribed, the
+  // motor's driver) either gives its own `speed` or follows the crank: the
+  // scene reader hands it the speed profile of the one body with a spin LOF,
+  // and refuses a scene whose own speeds disagree with the crank's.
+  /// The speed the element prescribes by itself (its `speed` parameter), or
+  /// null when it prescribes none or follows the crank.
+  virtual const SpeedProfile* own_speed() const { return nullptr; }
+  /// True when the element needs a crank speed and was given none.
+  virtual bool wants_speed() const { return false; }
+  /// Follow `crank` (angle turned since t = 0, speed, acceleration). Throws
+  /// InputError when the element cannot (e.g. a constant-speed approximation
+  /// under a varying speed).
+  virtual void follow_speed(const SpeedProfile& crank) { (void)crank; }
 
  protected:
   Element(std::string name, std::vector<int> markers)

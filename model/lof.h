@@ -18,6 +18,7 @@
 
 #include <vector>
 
+#include "model/speed_profile.h"
 #include "model/types.h"
 
 namespace evas {
@@ -55,7 +56,9 @@ class Lof {
   LofState at(double t) const;
   double interval() const { return interval_; }
   /// Knot times of the speed profile (integrators should stop there).
-  const std::vector<double>& knots() const { return times_; }
+  const std::vector<double>& knots() const { return profile_.times(); }
+  /// The spin's speed over time (spin kind; constant 0 otherwise).
+  const SpeedProfile& speed_profile() const { return profile_; }
   /// Spin angle theta(t) about the axis [rad] (0 for other kinds).
   double spin_angle(double t) const;
   double spin_speed(double t) const;
@@ -71,8 +74,7 @@ class Lof {
   Mat3 R0_ = Mat3::Identity();
   Vec3 axis_ = Vec3::UnitZ();
   double theta0_ = 0.0;
-  std::vector<double> times_, speeds_, slopes_, angles_;  // angles_: integral from times_[0]
-  double speed_integral(double t) const;
+  SpeedProfile profile_;
   // tracking
   double t_anchor_ = 0.0, interval_ = 0.0;
   Vec3 w0_ = Vec3::Zero(), psi_anchor_ = Vec3::Zero();

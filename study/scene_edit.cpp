@@ -106,11 +106,7 @@ std::string edit_scene_text(const std::string& text, const std::vector<std::stri
 
 SceneSource load_scene_source(const std::string& path, const std::vector<std::string>& params,
                               std::optional<double> t_end) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path + ": cannot read the scene file");
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  SceneSource src{path, ss.str(), false};
+  SceneSource src{path, read_scene_text(path), false};
   std::vector<std::string> all = params;
   if (t_end) all.push_back("time.end=" + number_text(*t_end));
   src.text = edit_scene_text(src.text, all);

@@ -371,7 +371,7 @@ TEST(PistonConrod, DeclarationAndFactory) {
   EXPECT_NEAR(out[4], out[3] * M_PI / 4 * 0.106 * 0.106, 1e-6);
   EXPECT_GT(out[3], 13.5e6);
   // Coupled mode is accepted and declares rank-1 inertia; eq2 (constant-speed series) is
-  // refused there, and prescribed mode without a speed is refused.
+  // refused there; prescribed mode without a speed waits for the crank's.
   v.texts["mode"] = "coupled";
   auto c = t.make("cyl1", {0, 1, 2}, v);
   EXPECT_TRUE(c->state_dependent());
@@ -390,12 +390,15 @@ TEST(PistonConrod, DeclarationAndFactory) {
     nv.numbers.erase("speed");
     nv.defaulted.clear();
     complete_params(t, nv, "test");
-    try {
-      t.make("cyl1", {0, 1, 2}, nv);
-      ADD_FAILURE() << "prescribed mode without speed accepted";
-    } catch (const InputError& err) {
-      EXPECT_NE(std::string(err.what()).find("'speed'"), std::string::npos) << err.what();
-    }
+    // without its own speed the element waits for the crank's (the scene
+    // reader hands it over, or refuses the scene: SceneSpeed tests)
+    const auto e = t.make("cyl1", {0, 1, 2}, nv);
+    EXPECT_TRUE(e->wants_speed());
+    EXPECT_EQ(e->own_speed(), nullptr);
+    const auto given = t.make("cyl1", {0, 1, 2}, v);
+    EXPECT_FALSE(given->wants_speed());
+    ASSERT_NE(given->own_speed(), nullptr);
+    EXPECT_EQ(given->own_speed()->speed(0.3), v.scalar("speed"));
   }
   v.texts["mode"] = "prescribed";
   v.texts["pressure_file"] = "/nonexistent/p.txt";
