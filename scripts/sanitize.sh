@@ -32,8 +32,9 @@ jobs="${JOBS:-1}"
 # that take minutes without a sanitizer, and test_calculix's Cylinder.* suite,
 # which meshes and solves with gmsh and ccx (external programs, not instrumented).
 default_tests="test_scene test_scene_elements test_marker_fit test_body_file test_results
-  test_gas_pressure test_calculix:Calculix* test_journal_bearing test_integrators_sdof
-  test_step_control test_study test_system_jacobian test_bad_inputs test_run_faults
+  test_gas_pressure test_calculix:Calculix* test_journal_bearing test_journal_bearing_rotor
+  test_integrators_sdof test_step_control test_study test_system_jacobian test_bad_inputs
+  test_run_faults test_run_faults_output
   test_joints test_dae_formulations test_ida_dae test_newmark_dae test_problems
   test_second_order_ls test_fast_nvector test_radau"
 tests=""
