@@ -7,7 +7,7 @@ namespace evas {
 Motor::Motor(std::string name, std::vector<int> markers, const Vec3& axis, double speed,
              double theta0, double K_r, double C_r, double K_c, double C_c)
     : Element(std::move(name), std::move(markers)),
-      drive_(SpeedProfile::constant(speed)),
+      drive_(speed),
       th0_(theta0),
       K_(K_r),
       C_(C_r),
@@ -32,14 +32,15 @@ Motor::Motor(std::string name, std::vector<int> markers, const Vec3& axis, doubl
 }
 
 void Motor::internal_initial(double t, const MarkerMotion* m, double* z) const {
-  const double th1 = drive_.angle_plus(t, th0_);
+  const double th1 = drive_.profile().angle_plus(t, th0_);
   const double th2 = a_.dot(m[0].psi - m[1].psi);
   const double th2d = a_.dot(m[0].w - m[1].w);
   // the disk turning with the crank (omega_d = theta_2_dot) and passing the
   // dynamometer's torque on: K_c (th_d - th2) = K_r (th1 - th_d) + C_r (w - th2d)
-  z[0] = (K_ * th1 + C_ * (drive_.speed(t) - th2d) + Kc_ * th2) / (K_ + Kc_);
+  z[0] = (K_ * th1 + C_ * (drive_.profile().speed(t) - th2d) + Kc_ * th2) / (K_ + Kc_);
   // 0 = K_r (th1 - th_d) + C_r (w - om_d) - K_c (th_d - th2) - C_c (om_d - th2d)
-  z[1] = (K_ * (th1 - z[0]) + C_ * drive_.speed(t) - Kc_ * (z[0] - th2) + Cc_ * th2d) / (C_ + Cc_);
+  z[1] = (K_ * (th1 - z[0]) + C_ * drive_.profile().speed(t) - Kc_ * (z[0] - th2) + Cc_ * th2d) /
+         (C_ + Cc_);
 }
 
 double Motor::clutch_torque(const MarkerMotion* m, const double* z) const {
@@ -62,8 +63,8 @@ void Motor::evaluate_z(double t, const MarkerMotion* m, const double* z, MarkerL
 
 void Motor::internal_rate(double t, const MarkerMotion* m, const double* z, double* h) const {
   h[0] = z[1];
-  h[1] = K_ * (drive_.angle_plus(t, th0_) - z[0]) + C_ * (drive_.speed(t) - z[1]) -
-         clutch_torque(m, z);
+  h[1] = K_ * (drive_.profile().angle_plus(t, th0_) - z[0]) +
+         C_ * (drive_.profile().speed(t) - z[1]) - clutch_torque(m, z);
 }
 
 void Motor::internal_derivatives(double, const MarkerMotion*, const double*, Mat& Dz, Mat& Hm,
@@ -82,7 +83,7 @@ void Motor::internal_derivatives(double, const MarkerMotion*, const double*, Mat
 }
 
 void Motor::torque(double t, const MarkerMotion* m, double& twist, double& T) const {
-  const double th1 = drive_.angle_plus(t, th0_);
+  const double th1 = drive_.profile().angle_plus(t, th0_);
   const double th2 = a_.dot(m[0].psi - m[1].psi);
   const double th2d = a_.dot(m[0].w - m[1].w);
   twist = th2 - th1;
@@ -92,7 +93,7 @@ void Motor::torque(double t, const MarkerMotion* m, double& twist, double& T) co
     T = clutch_torque(m, z);
     return;
   }
-  T = -K_ * twist - C_ * (th2d - drive_.speed(t));
+  T = -K_ * twist - C_ * (th2d - drive_.profile().speed(t));
 }
 
 void Motor::spring_damper_rows(double k, double c, Mat& D) const {
@@ -123,7 +124,7 @@ void Motor::channel_values_z(double t, const MarkerMotion* m, const double* z, d
   out[0] = disk_ ? clutch_torque(m, z) : T;
   out[1] = twist;
   if (!disk_) return;
-  out[2] = z[0] - (drive_.angle_plus(t, th0_));
+  out[2] = z[0] - (drive_.profile().angle_plus(t, th0_));
   out[3] = z[1];
 }
 

@@ -34,6 +34,7 @@
 // quasi-static disk, whose torque is Eq. 5's times K_c / (K_r + K_c).
 #pragma once
 
+#include "elements/prescribed_speed.h"
 #include "elements/registry.h"
 #include "model/element.h"
 
@@ -57,16 +58,10 @@ class Motor : public Element {
 
   /// The driver follows the crank's speed profile (the scene reader's
   /// follow_speed); until then the element reports wants_speed().
-  void leave_speed_to_crank() { wants_crank_ = true; }
-  const SpeedProfile* own_speed() const override {
-    return wants_crank_ || following_ ? nullptr : &drive_;
-  }
-  bool wants_speed() const override { return wants_crank_; }
-  void follow_speed(const SpeedProfile& crank) override {
-    drive_ = crank;
-    wants_crank_ = false;
-    following_ = true;
-  }
+  void leave_speed_to_crank() { drive_.leave_to_crank(); }
+  const SpeedProfile* own_speed() const override { return drive_.own(); }
+  bool wants_speed() const override { return drive_.waiting(); }
+  void follow_speed(const SpeedProfile& crank) override { drive_.follow(crank); }
 
   /// Twist theta_2 - theta_1 [rad] and clutch torque T [N m] at (t, motion)
   /// (with a clutch disk: at its quasi-static state).
@@ -92,9 +87,8 @@ class Motor : public Element {
   /// Spring-damper derivative rows of D for stiffness k, damping c.
   void spring_damper_rows(double k, double c, Mat& D) const;
   Vec3 a_;
-  SpeedProfile drive_;  // driver angle turned since t = 0 and speed
+  PrescribedSpeed drive_;  // driver angle turned since t = 0 and speed
   double th0_, K_, C_, Kc_, Cc_;
-  bool wants_crank_ = false, following_ = false;
   bool disk_;
 };
 

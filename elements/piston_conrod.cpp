@@ -56,10 +56,7 @@ double SliderCrank::acceleration_series(double theta, double w, int kmax) const 
 
 PistonConrod::PistonConrod(std::string name, std::vector<int> markers, const PistonConrodParams& p,
                            std::shared_ptr<const PressureTable> gas)
-    : Element(std::move(name), std::move(markers)),
-      p_(p),
-      drive_(SpeedProfile::constant(p.speed)),
-      gas_(std::move(gas)) {
+    : Element(std::move(name), std::move(markers)), p_(p), drive_(p.speed), gas_(std::move(gas)) {
   const std::string where = "piston-conrod '" + this->name() + "'";
   if (this->markers().size() != 3)
     throw InputError(where + ": needs 3 markers (crankpin, liner, head)");
@@ -91,8 +88,9 @@ PistonConrod::PistonConrod(std::string name, std::vector<int> markers, const Pis
 }
 
 PistonConrod::State PistonConrod::state(double t) const {
-  const double theta = drive_.angle_plus(t, (p_.initial_angle_deg - p_.firing_phase_deg) * kRad);
-  return state_at(theta, drive_.speed(t), drive_.acceleration(t));
+  const SpeedProfile& w = drive_.profile();
+  const double theta = w.angle_plus(t, (p_.initial_angle_deg - p_.firing_phase_deg) * kRad);
+  return state_at(theta, w.speed(t), w.acceleration(t));
 }
 
 void PistonConrod::follow_speed(const SpeedProfile& crank) {
@@ -108,9 +106,7 @@ void PistonConrod::follow_speed(const SpeedProfile& crank) {
                      "'speed')");
   if (gas_map_)
     gas_map_->check_covers(crank.min_speed(), crank.max_speed(), "piston-conrod '" + name() + "'");
-  drive_ = crank;
-  wants_crank_ = false;
-  following_ = true;
+  drive_.follow(crank);
 }
 
 void PistonConrod::set_pressure_map(std::shared_ptr<const PressureMap> map) {
@@ -120,7 +116,8 @@ void PistonConrod::set_pressure_map(std::shared_ptr<const PressureMap> map) {
                      ": a pressure_map needs mode 'prescribed' (the table would depend on the "
                      "crank speed, a state in mode 'coupled')");
   if (gas_) throw InputError(where + ": give pressure_file or pressure_map, not both");
-  if (!wants_crank_) map->check_covers(drive_.min_speed(), drive_.max_speed(), where);
+  if (const SpeedProfile* own = drive_.own())
+    map->check_covers(own->min_speed(), own->max_speed(), where);
   gas_map_ = std::move(map);
 }
 

@@ -48,6 +48,7 @@
 #include <memory>
 
 #include "elements/gas_pressure.h"
+#include "elements/prescribed_speed.h"
 #include "elements/pressure_map.h"
 #include "elements/registry.h"
 #include "model/element.h"
@@ -143,11 +144,11 @@ class PistonConrod : public Element {
 
   /// Mode prescribed: the crank's speed profile replaces `speed` (the scene
   /// reader's follow_speed); until then the element reports wants_speed().
-  void leave_speed_to_crank() { wants_crank_ = !p_.coupled; }
-  const SpeedProfile* own_speed() const override {
-    return p_.coupled || wants_crank_ || following_ ? nullptr : &drive_;
+  void leave_speed_to_crank() {
+    if (!p_.coupled) drive_.leave_to_crank();
   }
-  bool wants_speed() const override { return wants_crank_; }
+  const SpeedProfile* own_speed() const override { return p_.coupled ? nullptr : drive_.own(); }
+  bool wants_speed() const override { return drive_.waiting(); }
   void follow_speed(const SpeedProfile& crank) override;
   /// Gas pressure from tables at several speeds (in place of one table), read
   /// at the prescribed crank speed. Mode prescribed only; the speed (its own,
@@ -156,8 +157,7 @@ class PistonConrod : public Element {
 
  private:
   PistonConrodParams p_;
-  SpeedProfile drive_;  // mode prescribed: crank angle turned since t = 0, speed, acceleration
-  bool wants_crank_ = false, following_ = false;
+  PrescribedSpeed drive_;  // mode prescribed: crank angle since t = 0, speed, acceleration
   std::shared_ptr<const PressureTable> gas_;
   std::shared_ptr<const PressureMap> gas_map_;  // in place of gas_ (set_pressure_map)
   SliderCrank sc_;

@@ -68,14 +68,16 @@ OutputSpec SceneReader::read_output(const Node& n, const Model& model, double t_
     // standstill but neither reach zero later nor change sign (a profile stays
     // between its knots, so the knots inside the run and its two ends decide)
     const SpeedProfile& sp = model.bodies()[body].lof.speed_profile();
-    std::vector<double> w = {sp.speed(t_start), sp.speed(t_end)};
-    for (double k : sp.times())
-      if (k > t_start && k < t_end) w.push_back(sp.speed(k));
-    const double lo = *std::min_element(w.begin(), w.end());
-    const double hi = *std::max_element(w.begin(), w.end());
-    bool zero_later = sp.speed(t_end) == 0.0;
-    for (double k : sp.times())
-      if (k > t_start && k <= t_end && sp.speed(k) == 0.0) zero_later = true;
+    const double w_end = sp.speed(t_end);
+    double lo = std::min(sp.speed(t_start), w_end), hi = std::max(sp.speed(t_start), w_end);
+    bool zero_later = w_end == 0.0;
+    for (double k : sp.times()) {
+      if (!(k > t_start && k < t_end)) continue;
+      const double w = sp.speed(k);
+      lo = std::min(lo, w);
+      hi = std::max(hi, w);
+      zero_later = zero_later || w == 0.0;
+    }
     if ((lo < 0.0 && hi > 0.0) || zero_later)
       fail(b, item,
            "the crank-angle grid needs a crank that keeps turning one way; body '" +
