@@ -5,7 +5,7 @@ DEMO_OUT ?= demo-out
 DEBS = cmake g++ make libsundials-dev libsuitesparse-dev libeigen3-dev libspectra-dev \
        libboost-program-options-dev libgtest-dev libyaml-cpp-dev libhdf5-dev gnuplot-nox \
        gmsh calculix-ccx pybind11-dev python3-dev python3-numpy python3-scipy python3-pytest \
-       python3-matplotlib
+       python3-matplotlib libopenmpi-dev openmpi-bin
 
 .PHONY: deps build demo test bench work-precision docs format clean validate sanitize
 
@@ -58,6 +58,7 @@ bench: build
 	JOBS=$(JOBS) ./bench/baseline.sh $(BUILD)
 	./$(BUILD)/bench/evas_bench docs/performance.md validation/engine/engine.yaml \
 	  $(BUILD)/baseline/build/evas $(BUILD)/baseline/src/validation/engine/engine.yaml
+	python3 bench/sweep_scaling.py $(BUILD) validation/engine/engine.yaml >> docs/performance.md
 
 # Work-precision of every integrator on the paper's engine, Case 1 and Case 2
 # (about 20 minutes), kept in docs/work-precision/ (tables, figures, CSV).

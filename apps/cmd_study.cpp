@@ -9,9 +9,11 @@
 #include <sstream>
 
 #include "apps/commands.h"
+#include "apps/mpi_runner.h"
 #include "integrators/settings.h"
 #include "study/report.h"
 #include "study/study.h"
+#include "study/sweep.h"
 
 namespace evas::cli {
 
@@ -60,6 +62,12 @@ const char* kOverview =
     "  stability SCENE       largest stable fixed step of one case (--case,\n"
     "                        --step-range), optionally over a parameter sweep;\n"
     "                        writes stability.csv/.md/.png\n"
+    "  sweep SCENE           a grid of operating points (--sweep ITEM.KEY=VALUES,\n"
+    "                        repeatable): every point's channels, order cuts,\n"
+    "                        waterfall, Campbell diagram; writes sweep.h5/.csv/.md/.png\n"
+    "\n"
+    "Every sub-command runs its cases on --jobs N local worker processes, or on the\n"
+    "ranks of `mpirun -n N evas study ...`; the files are the same as a serial run's.\n"
     "\n"
     "`evas study <sub-command> --help` lists the options.\n"
     "Exit codes: 0 the study completed (failed cases are results), 1 bad input,\n"
@@ -102,6 +110,14 @@ void add_common(po::options_description& o) {
       "compare against this results file (evas run) instead of a reference run; channels "
       "are matched by name and times within 1e-9 relative")(
       "out", po::value<std::string>(), "output directory (default out/study-<scene name>)")(
+      "jobs,j", po::value<int>(),
+      "runs at once, each in a worker process of its own (one thread each); default: the "
+      "number of cores for sweep, else 1 (work-precision and convergence measure wall "
+      "times; stability runs one search per --sweep value at once). Under mpirun the ranks "
+      "are the workers (docs/study.md)")(
+      "max-wall", po::value<double>(),
+      "wall-clock limit of one case or sweep task (with --repeats: of all its runs) [s]: one "
+      "that takes longer fails with 'timed out' and the study goes on")(
       "no-plot", "do not run gnuplot (the .gp script is still written)")("quiet,q",
                                                                          "no progress lines");
 }
@@ -139,8 +155,37 @@ study::Options common_options(const po::variables_map& vm, const std::string& su
   o.plot = !vm.count("no-plot");
   if (!vm.count("quiet")) o.log = &std::cerr;
   o.stop = [] { return g_stop != 0; };
+  if (vm.count("max-wall")) {
+    o.max_wall = vm["max-wall"].as<double>();
+    if (!(o.max_wall > 0.0) || !std::isfinite(o.max_wall))
+      throw InputError("--max-wall must be a positive number of seconds");
+  }
+  const int default_jobs = sub == "sweep" ? study::available_cores() : 1;
+  const int jobs = vm.count("jobs") ? vm["jobs"].as<int>() : default_jobs;
+  if (jobs < 1) throw InputError("--jobs must be >= 1");
+  if (mpi_job().active) {
+    if (vm.count("jobs"))
+      throw InputError("--jobs does not apply under mpirun: the " + std::to_string(mpi_job().size) +
+                       " ranks are the workers");
+    o.runner = mpi_runner();
+  } else if (jobs > 1) {
+    // a worker stuck inside one step is killed a while after --max-wall
+    o.runner = study::process_runner(jobs, o.max_wall > 0.0 ? 1.5 * o.max_wall + 10.0 : 0.0);
+  }
   study::parse_norm(o.norm);  // bad values are input errors before anything runs
   return o;
+}
+
+// Parses a sub-command's options; true when --help or --help-settings was
+// answered (the command then ends with 0).
+bool parse_or_help(const std::vector<std::string>& args, const po::options_description& opts,
+                   po::variables_map& vm) {
+  if (parse_args(args, opts, {"scene"}, vm)) return true;
+  if (vm.count("help-settings")) {
+    std::cout << settings_reference();
+    return true;
+  }
+  return false;
 }
 
 std::vector<study::CaseInput> case_inputs(const po::variables_map& vm) {
@@ -197,11 +242,7 @@ int work_precision(const std::vector<std::string>& args) {
   add_cases(opts);
   add_common(opts);
   po::variables_map vm;
-  if (parse_args(args, opts, {"scene"}, vm)) return 0;
-  if (vm.count("help-settings")) {
-    std::cout << settings_reference();
-    return 0;
-  }
+  if (parse_or_help(args, opts, vm)) return 0;
   const study::Options o = common_options(vm, "work-precision");
   const auto specs = case_inputs(vm);
   SignalGuard guard;
@@ -237,11 +278,7 @@ int convergence(const std::vector<std::string>& args) {
       "allowed |slope - expected order| with --expect");
   add_common(opts);
   po::variables_map vm;
-  if (parse_args(args, opts, {"scene"}, vm)) return 0;
-  if (vm.count("help-settings")) {
-    std::cout << settings_reference();
-    return 0;
-  }
+  if (parse_or_help(args, opts, vm)) return 0;
   const study::Options o = common_options(vm, "convergence");
   if (!vm.count("case")) throw InputError("missing --case SPEC (one family sweeping step or rtol)");
   if (vm.count("tolerance") && !(vm["tolerance"].as<double>() >= 0))
@@ -298,11 +335,7 @@ int stability(const std::vector<std::string>& args) {
       "bisections", po::value<int>()->default_value(12), "bisections in log h");
   add_common(opts);
   po::variables_map vm;
-  if (parse_args(args, opts, {"scene"}, vm)) return 0;
-  if (vm.count("help-settings")) {
-    std::cout << settings_reference();
-    return 0;
-  }
+  if (parse_or_help(args, opts, vm)) return 0;
   const study::Options o = common_options(vm, "stability");
   if (!vm.count("case")) throw InputError("missing --case SPEC");
   if (!vm.count("step-range")) throw InputError("missing --step-range HMIN:HMAX");
@@ -333,6 +366,80 @@ int stability(const std::vector<std::string>& args) {
   }
 }
 
+std::vector<double> parse_orders(const std::string& text) {
+  std::vector<double> out;
+  for (const auto& item : study::split_list(text, ',')) {
+    char* end = nullptr;
+    const double o = std::strtod(item.c_str(), &end);
+    if (item.empty() || *end || !std::isfinite(o))
+      throw InputError("--orders '" + text + "': '" + item + "' is not a number");
+    if (std::abs(o * 2.0 - std::round(o * 2.0)) > 1e-9)
+      throw InputError("--orders '" + text + "': " + item +
+                       " is not a multiple of 0.5 (a four-stroke cycle resolves orders in "
+                       "steps of 0.5)");
+    out.push_back(o);
+  }
+  return out;
+}
+
+int sweep(const std::vector<std::string>& args) {
+  po::options_description opts(
+      "usage: evas study sweep SCENE.yaml --sweep ITEM.KEY=VALUES [--sweep ...] [options]\n\n"
+      "Runs the scene at every point of a grid of scene parameters: each --sweep\n"
+      "ITEM.KEY=VALUES changes the scene as --param does (ITEM a glob over the names of\n"
+      "bodies, markers and elements), the grid is the cartesian product (first key\n"
+      "slowest). VALUES: a comma list, A..B:STEP (linear, B inclusive) or A..B/N (N\n"
+      "log-spaced). Each point runs with the scene's integrator, or once per case of\n"
+      "--case/--cases. Writes DIR/points/NNNN.h5 (one per run, as it ends),\n"
+      "sweep.csv and sweep.md (after every run), sweep.h5 (the grid, every run's\n"
+      "status, statistics and channels, order spectra, mean speeds, Campbell data)\n"
+      "and, on a crank-angle grid, order_cuts.png, waterfall.png and campbell.png.\n"
+      "A failed or timed-out run (--max-wall) is recorded with its reason and the\n"
+      "others go on. --resume keeps the completed runs of an interrupted sweep;\n"
+      "--point I runs run I alone into DIR/points (a batch array job) and --merge\n"
+      "then builds the sweep files.\n\n"
+      "Example: evas study sweep validation/engine/engine.yaml --t-end 0.12 \\\n"
+      "  --sweep 'crank.lof.speed=157.08..523.6:52.36' --order-channels 'main3.fy'\n\n"
+      "Exit codes: 0 completed (even with failed runs), 1 bad input, 128 + N stopped\n"
+      "by signal N (130: Ctrl-C).\n\noptions");
+  opts.add_options()("sweep,s", po::value<std::vector<std::string>>()->composing(),
+                     "ITEM.KEY=VALUES, repeatable")(
+      "orders", po::value<std::string>()->default_value("1,2,4"),
+      "engine orders of the order cuts (multiples of 0.5)")(
+      "max-order", po::value<double>()->default_value(12.0),
+      "highest order kept in the spectra and drawn in the Campbell diagram")(
+      "cycles", po::value<int>()->default_value(1),
+      "engine cycles (720 deg, at the end of each run) per spectrum")(
+      "order-channels", po::value<std::string>(),
+      "globs of the channels drawn in the order cuts (up to 4) and the waterfall (the first); "
+      "default: the first selected channel")(
+      "point", po::value<int>(), "run task INDEX only, into DIR/points (batch array jobs)")(
+      "merge", "run nothing: build the sweep files from DIR/points")(
+      "resume", "continue an interrupted sweep in DIR: completed runs are kept");
+  add_cases(opts);
+  add_common(opts);
+  po::variables_map vm;
+  if (parse_or_help(args, opts, vm)) return 0;
+  const study::Options o = common_options(vm, "sweep");
+  study::SweepOptions so;
+  if (vm.count("sweep")) so.sweeps = vm["sweep"].as<std::vector<std::string>>();
+  so.cases = case_inputs(vm);
+  so.orders = parse_orders(vm["orders"].as<std::string>());
+  so.max_order = vm["max-order"].as<double>();
+  so.cycles = vm["cycles"].as<int>();
+  if (vm.count("order-channels")) so.order_channels = vm["order-channels"].as<std::string>();
+  if (vm.count("point")) {
+    so.point = vm["point"].as<int>();
+    if (so.point < 0) throw InputError("--point must be >= 0");
+  }
+  so.merge = vm.count("merge") > 0;
+  so.resume = vm.count("resume") > 0;
+  SignalGuard guard;
+  const auto res = study::sweep(o, so);
+  if (so.point < 0) std::cout << read_text(res.info.out_dir + "/sweep.md");
+  return finish(res.info, vm.count("quiet") > 0);
+}
+
 }  // namespace
 
 int cmd_study(const std::vector<std::string>& args) {
@@ -344,6 +451,7 @@ int cmd_study(const std::vector<std::string>& args) {
   if (sub[0] == "work-precision") return work_precision(sub);
   if (sub[0] == "convergence") return convergence(sub);
   if (sub[0] == "stability") return stability(sub);
+  if (sub[0] == "sweep") return sweep(sub);
   std::cerr << "evas study: unknown sub-command '" << sub[0] << "'\n\n" << kOverview;
   return 1;
 }

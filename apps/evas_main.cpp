@@ -5,6 +5,7 @@
 #include <iostream>
 
 #include "apps/commands.h"
+#include "apps/mpi_runner.h"
 #include "integrators/plugin.h"
 #include "model/types.h"
 
@@ -63,8 +64,15 @@ int main(int argc, char** argv) {
     return 0;
   }
   std::vector<std::string> args(argv + 1, argv + argc);
+  // Under mpirun: ranks 1..N-1 serve rank 0's tasks (apps/mpi_runner.h);
+  // rank 0 runs the command and lets them go when it ends.
+  struct MpiEnd {
+    ~MpiEnd() { evas::cli::mpi_finish(); }
+  } mpi_end;
   try {
     load_plugins(args);
+    if (const auto job = evas::cli::mpi_start(&argc, &argv); job.active && job.rank > 0)
+      return evas::cli::mpi_worker_loop();
     if (cmd == "run") return evas::cli::cmd_run(args);
     if (cmd == "info") return evas::cli::cmd_info(args);
     if (cmd == "export") return evas::cli::cmd_export(args);

@@ -196,7 +196,8 @@ int main(int argc, char** argv) {
   const std::string old_engine = argc > 4 ? argv[4] : "";
   std::ostringstream doc;
   doc << "# Performance\n\n"
-      << "Measured by `make bench` (`evas_bench`), which regenerates this file. Times are the "
+      << "Measured by `make bench` (`evas_bench`, which regenerates this file, and "
+         "`bench/sweep_scaling.py`, which appends its last section). Times are the "
          "minimum over repeats after a warm-up on the machine that ran it (2 cores, shared); "
          "compare the ratios within a table, not absolute times across machines (nor across "
          "tables: a shared machine's speed can drift within one run, docs/engine-speed.md, "

@@ -8,6 +8,7 @@
 #include "bodies/body_builder.h"
 #include "bodies/modal_contract.h"
 #include "bodies/truss.h"
+#include "io/body_cache.h"
 #include "io/body_file.h"
 #include "io/scene_reader.h"
 
@@ -44,7 +45,7 @@ void SceneReader::read_body(const Node& b, std::size_t i, Model& model) {
     if (p.is_relative()) p = dir_ / p;
     ModalBody body;
     try {
-      body = read_body_file(p.string());
+      body = read_body_file_cached(p.string());
     } catch (const InputError& e) {
       fail(file, item, e.what());
     }

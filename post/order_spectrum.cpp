@@ -9,8 +9,15 @@ namespace evas {
 
 OrderSpectrum order_spectrum(const std::vector<double>& theta, const std::vector<double>& y,
                              int cycles, double cycle_deg, double max_order) {
+  return order_spectra(theta, {&y}, cycles, cycle_deg, max_order).front();
+}
+
+std::vector<OrderSpectrum> order_spectra(const std::vector<double>& theta,
+                                         const std::vector<const std::vector<double>*>& ys,
+                                         int cycles, double cycle_deg, double max_order) {
   const std::size_t n = theta.size();
-  if (n != y.size()) throw InputError("order spectrum: angle and signal lengths differ");
+  for (const auto* y : ys)
+    if (y->size() != n) throw InputError("order spectrum: angle and signal lengths differ");
   if (n < 3) throw InputError("order spectrum: fewer than 3 samples");
   if (cycles < 0)
     throw InputError("order spectrum: cycles = " + std::to_string(cycles) +
@@ -43,33 +50,43 @@ OrderSpectrum order_spectrum(const std::vector<double>& theta, const std::vector
                      std::to_string(available));
   const long N = C * M;
   const std::size_t first = n - static_cast<std::size_t>(N);
-  for (std::size_t i = first; i < n; ++i)
-    if (!std::isfinite(y[i])) throw InputError("order spectrum: non-finite sample");
+  for (const auto* y : ys)
+    for (std::size_t i = first; i < n; ++i)
+      if (!std::isfinite((*y)[i])) throw InputError("order spectrum: non-finite sample");
 
-  OrderSpectrum s;
-  s.cycles = static_cast<int>(C);
   const double order_step = 360.0 / cycle_deg;  // orders per cycle harmonic
   const long jmax_nyq = M / 2;
   const long jmax =
       max_order > 0.0 ? std::min(jmax_nyq, static_cast<long>(max_order / order_step)) : jmax_nyq;
   const double theta0 = theta[first] * M_PI / 180.0;
+  std::vector<OrderSpectrum> out(ys.size());
+  std::vector<double> c(static_cast<std::size_t>(N)), sn(static_cast<std::size_t>(N));
   for (long j = 0; j <= jmax; ++j) {
-    // DFT bin k = j C: j periods per cycle.
-    double re = 0.0, im = 0.0;
+    // DFT bin k = j C: j periods per cycle; one table of cos and sin for all signals
     const double w = 2.0 * M_PI * static_cast<double>(j) / static_cast<double>(M);
     for (long i = 0; i < N; ++i) {
-      re += y[first + i] * std::cos(w * i);
-      im -= y[first + i] * std::sin(w * i);
+      c[static_cast<std::size_t>(i)] = std::cos(w * i);
+      sn[static_cast<std::size_t>(i)] = std::sin(w * i);
     }
     const bool edge = j == 0 || (M % 2 == 0 && j == M / 2);
     const double scale = (edge ? 1.0 : 2.0) / static_cast<double>(N);
     const double order = j * order_step;
-    s.order.push_back(order);
-    s.amplitude.push_back(scale * std::hypot(re, im));
-    // y ~ A cos(order (theta - theta0) + phi0) = A cos(order theta + phase)
-    s.phase.push_back(std::remainder(std::atan2(im, re) - order * theta0, 2.0 * M_PI));
+    for (std::size_t k = 0; k < ys.size(); ++k) {
+      const std::vector<double>& y = *ys[k];
+      double re = 0.0, im = 0.0;
+      for (long i = 0; i < N; ++i) {
+        re += y[first + i] * c[static_cast<std::size_t>(i)];
+        im -= y[first + i] * sn[static_cast<std::size_t>(i)];
+      }
+      OrderSpectrum& s = out[k];
+      s.cycles = static_cast<int>(C);
+      s.order.push_back(order);
+      s.amplitude.push_back(scale * std::hypot(re, im));
+      // y ~ A cos(order (theta - theta0) + phi0) = A cos(order theta + phase)
+      s.phase.push_back(std::remainder(std::atan2(im, re) - order * theta0, 2.0 * M_PI));
+    }
   }
-  return s;
+  return out;
 }
 
 }  // namespace evas

@@ -28,4 +28,12 @@ struct OrderSpectrum {
 OrderSpectrum order_spectrum(const std::vector<double>& theta_deg, const std::vector<double>& y,
                              int cycles = 0, double cycle_deg = 720.0, double max_order = 0.0);
 
+/// order_spectrum of several signals on the same crank angles (the checks and
+/// the cosine and sine tables once for all): element k is order_spectrum(theta,
+/// *ys[k], ...), digit for digit. A non-finite sample in any signal throws.
+std::vector<OrderSpectrum> order_spectra(const std::vector<double>& theta,
+                                         const std::vector<const std::vector<double>*>& ys,
+                                         int cycles = 0, double cycle_deg = 720.0,
+                                         double max_order = 0.0);
+
 }  // namespace evas

@@ -150,6 +150,55 @@ std::vector<std::string> expand_values(const std::string& key, const std::string
   return out;
 }
 
+namespace {
+
+// "A..B:S" -> A, A + S, ..., up to B (inclusive within 1e-9 of S).
+std::vector<std::string> linear_range(const std::string& where, const std::string& item) {
+  const auto dots = item.find(".."), colon = item.find(':', item.find("..") + 2);
+  auto num = [&](const std::string& t) {
+    char* end = nullptr;
+    const double v = std::strtod(t.c_str(), &end);
+    if (t.empty() || *end || !std::isfinite(v))
+      throw InputError(where + ": '" + item + "': expected A..B:STEP with numbers A, B, STEP");
+    return v;
+  };
+  const double a = num(item.substr(0, dots)), b = num(item.substr(dots + 2, colon - dots - 2)),
+               step = num(item.substr(colon + 1));
+  if (!(step > 0.0) || b < a)
+    throw InputError(where + ": '" + item +
+                     "': a linear range A..B:STEP needs B >= A and STEP > 0");
+  const double n = std::floor((b - a) / step + 1e-9);
+  if (n > 100000) throw InputError(where + ": '" + item + "': more than 100000 values");
+  std::vector<std::string> out;
+  // A + k S with one rounding (fma): the same value whatever the compiler
+  // contracts, and the nearest double to the exact one
+  for (long k = 0; k <= static_cast<long>(n); ++k)
+    out.push_back(number_text(std::fma(static_cast<double>(k), step, a)));
+  return out;
+}
+
+}  // namespace
+
+ParamSweep parse_sweep(const std::string& assignment, const std::string& option) {
+  const std::string where = option + " '" + assignment + "'";
+  const auto eq = assignment.find('=');
+  if (eq == std::string::npos || eq == 0) throw InputError(where + ": expected ITEM.KEY=V1,V2,...");
+  ParamSweep sw;
+  sw.key = assignment.substr(0, eq);
+  for (const auto& item : split_list(assignment.substr(eq + 1), ',')) {
+    if (item.empty()) throw InputError(where + ": empty value");
+    const auto dots = item.find("..");
+    if (dots != std::string::npos && item.find(':', dots) != std::string::npos) {
+      for (auto& v : linear_range(where, item)) sw.values.push_back(v);
+    } else if (dots != std::string::npos && item.find('/') != std::string::npos) {
+      for (auto& v : log_range(option + " " + sw.key, item, "number")) sw.values.push_back(v);
+    } else {
+      sw.values.push_back(item);
+    }
+  }
+  return sw;
+}
+
 std::vector<Case> expand_case(const std::string& spec, const IntegratorSettings& base,
                               const std::string& where) {
   const std::string prefix =

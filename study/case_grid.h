@@ -47,6 +47,18 @@ std::vector<Case> expand_case(const std::string& spec, const IntegratorSettings&
 /// skipped. Returns {spec, "FILE:LINE"} pairs. Throws InputError naming the file.
 std::vector<std::pair<std::string, std::string>> read_cases_file(const std::string& path);
 
+/// One scene-parameter sweep "ITEM.KEY=V1,V2,..." (the --sweep of `evas study
+/// stability` and `sweep`): the key and its values in text form. Items are
+/// values (brackets protect commas: [1e6, 1e6, 1e6]), log ranges "A..B/N" (N
+/// log-spaced numbers from A to B inclusive, A, B > 0) or linear ranges
+/// "A..B:S" (A, A+S, ... up to B inclusive, S > 0 when B > A; the values are
+/// A + k S rounded once, so they do not accumulate round-off). Throws InputError quoting it.
+struct ParamSweep {
+  std::string key;
+  std::vector<std::string> values;
+};
+ParamSweep parse_sweep(const std::string& assignment, const std::string& option = "--sweep");
+
 /// Glob match: '*' any run of characters, '?' one character, anything else literally.
 bool glob_match(const std::string& pattern, const std::string& text);
 

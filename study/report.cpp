@@ -91,11 +91,17 @@ std::string shell_quote(const std::string& s) {
 bool have_gnuplot() { return std::system("command -v gnuplot >/dev/null 2>&1") == 0; }
 
 bool run_gnuplot(const std::filesystem::path& script) {
-  // from the script's folder: the script names its output without a folder
-  const std::filesystem::path dir = script.has_parent_path() ? script.parent_path() : ".";
-  const std::string cmd = "cd " + shell_quote(dir.string()) + " && gnuplot " +
-                          shell_quote(script.filename().string()) + " >/dev/null 2>&1";
-  return std::system(cmd.c_str()) == 0;
+  return run_gnuplot(std::vector<std::filesystem::path>{script});
+}
+
+bool run_gnuplot(const std::vector<std::filesystem::path>& scripts) {
+  if (scripts.empty()) return true;
+  // from the scripts' folder: a script names its output without a folder
+  const std::filesystem::path& first = scripts.front();
+  const std::filesystem::path dir = first.has_parent_path() ? first.parent_path() : ".";
+  std::string cmd = "cd " + shell_quote(dir.string()) + " && gnuplot";
+  for (const auto& s : scripts) cmd += " " + shell_quote(s.filename().string());
+  return std::system((cmd + " >/dev/null 2>&1").c_str()) == 0;
 }
 
 std::string gp_quote(const std::string& s) {

@@ -30,6 +30,9 @@ bool have_gnuplot();
 /// Runs gnuplot on `script` in the script's folder (the script names its output
 /// file without a folder); false on failure.
 bool run_gnuplot(const std::filesystem::path& script);
+/// Several scripts of one folder in one gnuplot process, in order (gnuplot's
+/// start is most of the time of a small figure). False when gnuplot failed.
+bool run_gnuplot(const std::vector<std::filesystem::path>& scripts);
 /// Text as a gnuplot single-quoted string literal.
 std::string gp_quote(const std::string& s);
 

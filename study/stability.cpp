@@ -116,6 +116,97 @@ void write_stability(const Options& opt, StabilityResult& res, const StabilityOp
   plot(opt, dir / "stability.gp", gp.str(), info, png);
 }
 
+// The search at one sweep value: reference run, then HMAX, HMIN and the
+// bisections, one run at a time.
+struct Search {
+  enum class Phase { reference, h_max, h_min, bisect, done };
+  SceneSource src;
+  SceneInfo info;
+  std::string tag;  // "KEY = VALUE: " in progress lines
+  Phase phase = Phase::reference;
+  double h = 0.0;  // the step of the next trial
+  std::vector<double> bound;
+  double t_first = 0.0;
+  int bisections = 0;
+};
+
+// After the reference: the growth bound per channel (growth x the
+// reference's max |y| after the first output), then the trial at HMAX.
+void start_trials(Search& q, StabilityPoint& p, const Reference& ref, const StabilityOptions& so) {
+  const long nc = ref.y.cols();
+  q.bound.assign(static_cast<std::size_t>(nc), 0.0);
+  double refmax = 0.0;
+  for (long c = 0; c < nc; ++c) {
+    double m = 0.0;
+    for (long r = std::min<long>(1, ref.y.rows() - 1); r < ref.y.rows(); ++r)
+      m = std::max(m, std::abs(ref.y(r, c)));
+    q.bound[static_cast<std::size_t>(c)] = so.growth * m;
+    refmax = std::max(refmax, m);
+  }
+  p.reference_max = refmax;
+  if (!(refmax > 0))
+    throw InputError(
+        "stability: every selected channel is zero in the reference run (choose "
+        "channels that move, --channels)");
+  q.t_first = ref.time.empty() ? 0.0 : ref.time.front();
+  q.phase = Search::Phase::h_max;
+  q.h = so.h_max;
+}
+
+// One trial's outcome: HMAX stable ends the search; else HMIN, then bisections
+// in log h between the largest stable and the smallest unstable step.
+void advance(Search& q, StabilityPoint& p, bool ok, const std::string& why,
+             const StabilityOptions& so) {
+  ++p.runs;
+  auto bisect = [&] {
+    if (q.bisections >= so.bisections) {
+      q.phase = Search::Phase::done;
+      return;
+    }
+    q.phase = Search::Phase::bisect;
+    q.h = std::sqrt(p.h_stable * p.h_unstable);
+  };
+  switch (q.phase) {
+    case Search::Phase::h_max:
+      if (ok) {
+        p.status = StabilityStatus::stable_to_hmax;
+        p.h_stable = so.h_max;
+        q.phase = Search::Phase::done;
+      } else {
+        p.h_unstable = so.h_max;
+        p.message = why;
+        q.phase = Search::Phase::h_min;
+        q.h = so.h_min;
+      }
+      return;
+    case Search::Phase::h_min:
+      if (!ok) {
+        p.status = StabilityStatus::unstable_at_hmin;
+        p.h_unstable = so.h_min;
+        p.message = why;
+        q.phase = Search::Phase::done;
+        return;
+      }
+      p.h_stable = so.h_min;
+      p.status = StabilityStatus::bracketed;
+      bisect();
+      return;
+    case Search::Phase::bisect:
+      ++q.bisections;
+      if (ok) {
+        p.h_stable = q.h;
+      } else {
+        p.h_unstable = q.h;
+        p.message = why;
+      }
+      bisect();
+      return;
+    case Search::Phase::reference:
+    case Search::Phase::done:
+      return;
+  }
+}
+
 }  // namespace
 
 StabilityResult stability(const Options& opt, const CaseInput& spec, const StabilityOptions& so) {
@@ -148,19 +239,9 @@ StabilityResult stability(const Options& opt, const CaseInput& spec, const Stabi
 
   std::vector<std::string> values = {""};
   if (!so.sweep.empty()) {
-    const auto eq = so.sweep.find('=');
-    if (eq == std::string::npos || eq == 0)
-      throw InputError("--sweep '" + so.sweep + "': expected ITEM.KEY=V1,V2,...");
-    res.sweep_key = so.sweep.substr(0, eq);
-    values.clear();
-    for (const auto& item : split_list(so.sweep.substr(eq + 1), ',')) {
-      if (item.empty()) throw InputError("--sweep '" + so.sweep + "': empty value");
-      if (item.find("..") != std::string::npos && item.find('/') != std::string::npos) {
-        for (auto& v : log_range("--sweep " + res.sweep_key, item, "number")) values.push_back(v);
-      } else {
-        values.push_back(item);
-      }
-    }
+    ParamSweep sw = parse_sweep(so.sweep);
+    res.sweep_key = sw.key;
+    values = std::move(sw.values);
     // every swept scene must read: check them all before the first run
     for (const auto& v : values) edited(s.src, {res.sweep_key + "=" + v}, "--sweep").parse();
   }
@@ -178,106 +259,97 @@ StabilityResult stability(const Options& opt, const CaseInput& spec, const Stabi
                " -> " + s.out.string());
   write_stability(opt, res, so, false);
 
+  // The searches at the sweep values are independent: they advance in rounds,
+  // one run per unfinished value in each round, through the study's runner
+  // (--jobs, MPI). Each search's runs, and so its result, are those of a
+  // search on its own.
+  const Case ref_case =
+      opt.reference_file.empty() ? reference_case(opt.reference, s.info.integrator) : Case{};
+  std::vector<Search> searches;
   for (std::size_t k = 0; k < values.size(); ++k) {
-    if (stopped(opt)) {
-      res.info.interrupted = true;
-      break;
-    }
-    StabilityPoint& p = res.points[k];
-    const SceneSource src =
+    Search q;
+    q.src =
         res.sweep_key.empty() ? s.src : edited(s.src, {res.sweep_key + "=" + values[k]}, "--sweep");
-    const std::string tag = res.sweep_key.empty() ? "" : res.sweep_key + " = " + values[k] + ": ";
-    SceneInfo info = res.sweep_key.empty() ? s.info : probe_scene(src);
-    Reference ref;
-    try {
-      ref = !opt.reference_file.empty()
-                ? read_reference(opt, info, s.names, s.units)
-                : run_reference(opt, src, info, s.channels, s.names, s.units);
-    } catch (const ReferenceFailed& e) {
-      if (res.sweep_key.empty()) throw;
-      p.status = StabilityStatus::reference_failed;
-      p.message = e.what();
-      say(opt, "evas study: " + tag + e.what());
-      write_stability(opt, res, so, false);
-      continue;
-    }
-    // bound per channel: growth x the reference's max |y| after the first output
-    const long nc = ref.y.cols();
-    std::vector<double> bound(static_cast<std::size_t>(nc), 0.0);
-    double refmax = 0.0;
-    for (long c = 0; c < nc; ++c) {
-      double m = 0.0;
-      for (long r = std::min<long>(1, ref.y.rows() - 1); r < ref.y.rows(); ++r)
-        m = std::max(m, std::abs(ref.y(r, c)));
-      bound[static_cast<std::size_t>(c)] = so.growth * m;
-      refmax = std::max(refmax, m);
-    }
-    p.reference_max = refmax;
-    if (!(refmax > 0))
-      throw InputError(
-          "stability: every selected channel is zero in the reference run (choose "
-          "channels that move, --channels)");
-    const double t_first = ref.time.empty() ? 0.0 : ref.time.front();
-    std::string why;
-    auto trial = [&](double h) {
-      IntegratorSettings st = res.c.settings;
-      st.step = h;
-      int row = 0;
-      RowCheck check = [&](double t, const double* y) {
-        if (row++ == 0 && t <= t_first) return;
-        for (long c = 0; c < nc; ++c) {
-          const double b = bound[static_cast<std::size_t>(c)];
-          if (b > 0 && std::abs(y[c]) > b)
-            throw RunError("|" + s.names[static_cast<std::size_t>(c)] +
-                           "| = " + sci(std::abs(y[c]), 3) + " > " + gnum(so.growth, 4) +
-                           " x reference max " + sci(b / so.growth, 3) + " at t = " + gnum(t, 6) +
-                           " s");
-        }
-      };
-      const RunData d = run_case(src, st, s.channels, check, opt.stop);
-      ++p.runs;
-      const bool ok = d.status == CaseStatus::completed;
-      why = ok ? "" : d.message;
-      say(opt, "evas study: " + tag + "h = " + gnum(h, 6) +
-                   " s: " + (ok ? std::string("stable") : "unstable: " + d.message));
-      return ok;
-    };
-    if (trial(so.h_max)) {
-      p.status = StabilityStatus::stable_to_hmax;
-      p.h_stable = so.h_max;
+    q.tag = res.sweep_key.empty() ? "" : res.sweep_key + " = " + values[k] + ": ";
+    q.info = res.sweep_key.empty() ? s.info : probe_scene(q.src);
+    if (!opt.reference_file.empty()) {
+      start_trials(q, res.points[k], read_reference(opt, q.info, s.names, s.units), so);
     } else {
-      p.h_unstable = so.h_max;
-      p.message = why;
-      if (stopped(opt)) {
-        p.status = StabilityStatus::interrupted;
-      } else if (!trial(so.h_min)) {
-        p.status = StabilityStatus::unstable_at_hmin;
-        p.h_unstable = so.h_min;
-        p.message = why;
-      } else {
-        p.h_stable = so.h_min;
-        p.status = StabilityStatus::bracketed;
-        for (int i = 0; i < so.bisections; ++i) {
-          if (stopped(opt)) {
-            p.status = StabilityStatus::interrupted;
-            break;
-          }
-          const double mid = std::sqrt(p.h_stable * p.h_unstable);
-          if (trial(mid)) {
-            p.h_stable = mid;
-          } else {
-            p.h_unstable = mid;
-            p.message = why;
-          }
-          write_stability(opt, res, so, false);
-        }
-      }
+      say(opt, "evas study: " + q.tag + "reference " + ref_case.label + " ...");
     }
-    say(opt, "evas study: " + tag + to_text(p.status) + ", largest stable step " +
-                 gnum(p.h_stable, 6) + " s" +
-                 (std::isnan(p.h_unstable) ? "" : ", unstable at " + gnum(p.h_unstable, 6) + " s"));
+    searches.push_back(std::move(q));
+  }
+  while (!stopped(opt)) {
+    std::vector<TaskSpec> tasks;
+    std::vector<int> todo, owner;
+    for (std::size_t k = 0; k < searches.size(); ++k) {
+      const Search& q = searches[k];
+      if (q.phase == Search::Phase::done) continue;
+      TaskSpec t;
+      t.src = q.src;
+      t.channels = s.channels;
+      t.max_wall = opt.max_wall;
+      if (q.phase == Search::Phase::reference) {
+        t.settings = ref_case.settings;
+      } else {
+        t.settings = res.c.settings;
+        t.settings.step = q.h;
+        t.limit = q.bound;
+        t.limit_names = s.names;
+        t.limit_after = q.t_first;
+        t.growth = so.growth;
+      }
+      todo.push_back(static_cast<int>(tasks.size()));
+      owner.push_back(static_cast<int>(k));
+      tasks.push_back(std::move(t));
+    }
+    if (tasks.empty()) break;
+    std::vector<RunData> runs(tasks.size());
+    std::vector<bool> ran(tasks.size(), false);
+    runner_of(opt).run(
+        tasks, todo,
+        [&](const TaskEnd& e) {
+          runs[static_cast<std::size_t>(e.index)] = e.run;
+          ran[static_cast<std::size_t>(e.index)] = true;
+        },
+        opt.stop);
+    for (std::size_t i = 0; i < tasks.size(); ++i) {
+      if (!ran[i]) continue;  // cut short by the interrupt
+      const auto k = static_cast<std::size_t>(owner[i]);
+      Search& q = searches[k];
+      StabilityPoint& p = res.points[k];
+      if (q.phase == Search::Phase::reference) {
+        try {
+          const Reference ref = reference_of(ref_case, runs[i], q.info, s.names, s.units);
+          say(opt, "evas study: " + q.tag + "reference " + ref_case.label + ": " +
+                       std::to_string(ref.stats.steps) + " steps, " + gnum(ref.wall, 3) + " s");
+          start_trials(q, p, ref, so);
+        } catch (const ReferenceFailed& e) {
+          if (res.sweep_key.empty()) throw;
+          p.status = StabilityStatus::reference_failed;
+          p.message = e.what();
+          q.phase = Search::Phase::done;
+          say(opt, "evas study: " + q.tag + e.what());
+        }
+        continue;
+      }
+      const RunData& d = runs[i];
+      const bool ok = d.status == CaseStatus::completed;
+      say(opt, "evas study: " + q.tag + "h = " + gnum(q.h, 6) +
+                   " s: " + (ok ? std::string("stable") : "unstable: " + d.message));
+      advance(q, p, ok, d.message, so);
+      if (q.phase == Search::Phase::done)
+        say(opt,
+            "evas study: " + q.tag + to_text(p.status) + ", largest stable step " +
+                gnum(p.h_stable, 6) + " s" +
+                (std::isnan(p.h_unstable) ? "" : ", unstable at " + gnum(p.h_unstable, 6) + " s"));
+    }
     write_stability(opt, res, so, false);
   }
+  // an interrupted search keeps its bracket so far
+  for (std::size_t k = 0; k < searches.size(); ++k)
+    if (searches[k].phase != Search::Phase::done && res.points[k].runs > 0)
+      res.points[k].status = StabilityStatus::interrupted;
   if (stopped(opt)) res.info.interrupted = true;
   write_stability(opt, res, so, true);
   return res;

@@ -15,6 +15,7 @@
 
 #include <functional>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <ostream>
 #include <stdexcept>
@@ -25,6 +26,7 @@
 #include "study/measure.h"
 #include "study/run_case.h"
 #include "study/scene_edit.h"
+#include "study/task_runner.h"
 
 namespace evas::study {
 
@@ -51,6 +53,9 @@ struct Options {
   bool plot = true;                           ///< run gnuplot when present
   std::ostream* log = nullptr;                ///< progress lines (nullptr: silent)
   std::function<bool()> stop;                 ///< true once an interrupt was requested
+  /// Runs the cases (nullptr: one after another in this process); --jobs, MPI.
+  std::shared_ptr<TaskRunner> runner;
+  double max_wall = 0.0;  ///< wall-clock limit of one run [s] (--max-wall); 0 = none
 };
 
 /// A case spec with where it came from ("" = --case, else "FILE:LINE").

@@ -139,7 +139,16 @@ Reference run_reference(const Options& opt, const SceneSource& src, const SceneI
                         const std::vector<std::string>& units) {
   const Case c = reference_case(opt.reference, info.integrator);
   say(opt, "evas study: reference " + c.label + " ...");
-  RunData d = run_case(src, c.settings, channels, nullptr, opt.stop);
+  Reference r =
+      reference_of(c, run_case(src, c.settings, channels, nullptr, opt.stop), info, names, units);
+  say(opt, "evas study: reference " + c.label + ": " + std::to_string(r.stats.steps) + " steps, " +
+               gnum(r.wall, 3) + " s");
+  return r;
+}
+
+Reference reference_of(const Case& c, const RunData& d, const SceneInfo& info,
+                       const std::vector<std::string>& names,
+                       const std::vector<std::string>& units) {
   if (d.status != CaseStatus::completed)
     throw ReferenceFailed("the reference run '" + c.label + "' failed: " + d.message);
   if (d.time.size() != info.times.size())
@@ -155,8 +164,6 @@ Reference run_reference(const Options& opt, const SceneSource& src, const SceneI
   r.units = units;
   r.stats = d.stats;
   r.wall = d.wall;
-  say(opt, "evas study: reference " + c.label + ": " + std::to_string(d.stats.steps) + " steps, " +
-               gnum(d.wall, 3) + " s");
   return r;
 }
 
@@ -230,22 +237,42 @@ std::vector<int> reference_rows(const Options& opt, Setup& s, const Reference& r
   }
 }
 
+std::vector<TaskSpec> case_tasks(const Options& opt, const Setup& s,
+                                 const std::vector<Case>& cases) {
+  std::vector<TaskSpec> tasks;
+  for (const auto& c : cases) {
+    TaskSpec t;
+    t.src = s.src;
+    t.settings = c.settings;
+    t.channels = s.channels;
+    t.repeats = opt.repeats;
+    t.max_wall = opt.max_wall;
+    tasks.push_back(std::move(t));
+  }
+  return tasks;
+}
+
+TaskRunner& runner_of(const Options& opt) {
+  static const std::unique_ptr<TaskRunner> serial = serial_runner();
+  return opt.runner ? *opt.runner : *serial;
+}
+
 void run_cases(const Options& opt, const Setup& s, const std::vector<Case>& cases,
                const Reference& ref, const std::vector<int>& rows, std::vector<CaseResult>& results,
                StudyInfo& info, const std::function<void()>& on_case_done) {
   const double scale = std::abs(s.info.t_end - s.info.t_start);
-  for (std::size_t k = 0; k < cases.size(); ++k) {
-    if (stopped(opt)) {
-      info.interrupted = true;
-      break;
-    }
-    const RunData d =
-        run_case_repeated(s.src, cases[k].settings, s.channels, opt.repeats, opt.stop);
-    if (stopped(opt)) break;  // cut short by the interrupt: left "not run"
-    results[k] = evaluate(cases[k], d, ref, rows, s.norm, scale);
-    say(opt, case_line(k + 1, cases.size(), results[k]));
-    on_case_done();
-  }
+  const std::vector<TaskSpec> tasks = case_tasks(opt, s, cases);
+  std::vector<int> todo(cases.size());
+  for (std::size_t k = 0; k < cases.size(); ++k) todo[k] = static_cast<int>(k);
+  runner_of(opt).run(
+      tasks, todo,
+      [&](const TaskEnd& e) {
+        const auto k = static_cast<std::size_t>(e.index);
+        results[k] = evaluate(cases[k], e.run, ref, rows, s.norm, scale);
+        say(opt, case_line(k + 1, cases.size(), results[k]));
+        on_case_done();
+      },
+      opt.stop);
   if (stopped(opt)) info.interrupted = true;
 }
 
@@ -432,6 +459,26 @@ bool plot(const Options& opt, const fs::path& script, const std::string& text, S
   }
   info.files.push_back(png.string());
   return true;
+}
+
+void plot_all(const Options& opt, const std::vector<Figure>& figures, StudyInfo& info) {
+  std::vector<fs::path> scripts;
+  for (const Figure& f : figures) {
+    write_file_atomic(f.script, f.text);
+    info.files.push_back(f.script.string());
+    scripts.push_back(f.script);
+  }
+  if (!opt.plot || !have_gnuplot()) return;
+  std::error_code ec;
+  for (const Figure& f : figures) fs::remove(f.png, ec);  // no stale figure passes for a new one
+  run_gnuplot(scripts);
+  for (const Figure& f : figures) {
+    if (!fs::exists(f.png) && (!run_gnuplot(f.script) || !fs::exists(f.png))) {
+      say(opt, "evas study: gnuplot failed on " + f.script.string());
+      continue;
+    }
+    info.files.push_back(f.png.string());
+  }
 }
 
 std::string gp_terminal(const fs::path& png, int w, int h) {

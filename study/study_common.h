@@ -55,6 +55,11 @@ Case reference_case(const std::string& spec, const IntegratorSettings& base);
 Reference run_reference(const Options& opt, const SceneSource& src, const SceneInfo& info,
                         const std::vector<int>& channels, const std::vector<std::string>& names,
                         const std::vector<std::string>& units);
+/// The reference from its run: ReferenceFailed when the run failed or gave
+/// fewer rows than the scene's output times.
+Reference reference_of(const Case& c, const RunData& d, const SceneInfo& info,
+                       const std::vector<std::string>& names,
+                       const std::vector<std::string>& units);
 /// Reads opt.reference_file at the scene's output times.
 Reference read_reference(const Options& opt, const SceneInfo& info,
                          const std::vector<std::string>& names,
@@ -66,12 +71,18 @@ std::vector<int> reference_rows(const Options& opt, Setup& s, const Reference& r
 
 // --- cases ------------------------------------------------------------------------
 
-/// The loop of work_precision and convergence: for each case in order, checks
-/// the stop request (then sets info.interrupted and stops), runs it
-/// (run_case_repeated), stores it evaluated against the reference in
-/// results[k] (a run cut short by the interrupt stays "not run" and ends the
-/// loop), prints its line and calls on_case_done (the driver writes its tables
-/// there). After the loop, a stop request sets info.interrupted.
+/// One task per case: the scene with the case's settings, the study's channels,
+/// repeats and --max-wall.
+std::vector<TaskSpec> case_tasks(const Options& opt, const Setup& s,
+                                 const std::vector<Case>& cases);
+/// opt.runner, or the serial runner.
+TaskRunner& runner_of(const Options& opt);
+
+/// The loop of work_precision and convergence: runs every case through the
+/// study's runner (in the order they finish with several workers), stores each
+/// evaluated against the reference in results[k], prints its line and calls
+/// on_case_done (the driver writes its tables there). A case cut short by the
+/// interrupt stays "not run"; a stop request sets info.interrupted.
 void run_cases(const Options& opt, const Setup& s, const std::vector<Case>& cases,
                const Reference& ref, const std::vector<int>& rows, std::vector<CaseResult>& results,
                StudyInfo& info, const std::function<void()>& on_case_done);
@@ -110,6 +121,15 @@ void write_info_attributes(hid_t f, const std::string& kind, const StudyInfo& in
 /// adds the files written to info.files. True when the figure was made.
 bool plot(const Options& opt, const fs::path& script, const std::string& text, StudyInfo& info,
           const fs::path& png);
+/// A figure: its gnuplot script's path and text and the PNG it draws.
+struct Figure {
+  fs::path script;
+  std::string text;
+  fs::path png;
+};
+/// plot() of figures of one folder with one gnuplot process; a figure that
+/// process did not draw is tried alone (and reported as plot() does).
+void plot_all(const Options& opt, const std::vector<Figure>& figures, StudyInfo& info);
 /// The pngcairo terminal and output lines of a script.
 std::string gp_terminal(const fs::path& png, int w, int h);
 

@@ -1,0 +1,41 @@
+// A study's unit of work, as data: one run of a scene with one integrator
+// setting, keeping chosen channels (run_case.h). A task and its result pack
+// into bytes exactly (every double bit for bit), so that a run made in this
+// process, in a forked worker (--jobs) or on another MPI rank gives the same
+// result files.
+#pragma once
+
+#include <functional>
+#include <string>
+
+#include "study/run_case.h"
+
+namespace evas::study {
+
+struct TaskSpec {
+  SceneSource src;
+  IntegratorSettings settings;
+  std::vector<int> channels;  ///< indices into the scene's channels
+  int repeats = 1;            ///< wall time = minimum over the repeats
+  double max_wall = 0.0;      ///< wall-clock limit of the run [s]; 0 = none
+  /// Growth limit of a stability trial (none when empty): after the first
+  /// output row (that row only when its t <= limit_after), a kept channel c
+  /// with limit[c] > 0 and |y_c| > limit[c] ends the run as failed, "|NAME| =
+  /// V > GROWTH x reference max M at t = T s" (NAME from limit_names).
+  std::vector<double> limit;
+  std::vector<std::string> limit_names;
+  double limit_after = 0.0, growth = 0.0;
+};
+
+/// Runs the task (run_case_repeated; with a limit, one run_case with that
+/// check). A run longer than max_wall fails with "timed out: ..."; `stop` (may
+/// be empty) as in run_case.
+RunData run_task(const TaskSpec& task, const std::function<bool()>& stop = nullptr);
+
+/// Exact byte forms. unpack_* throw std::runtime_error on a malformed buffer.
+std::string pack_task(const TaskSpec& t);
+TaskSpec unpack_task(const std::string& bytes);
+std::string pack_run(const RunData& d);
+RunData unpack_run(const std::string& bytes);
+
+}  // namespace evas::study
