@@ -37,7 +37,7 @@ default_tests="test_scene test_scene_elements test_marker_fit test_body_file tes
   test_run_faults test_run_faults_output
   test_joints test_dae_formulations test_ida_dae test_newmark_dae test_problems
   test_second_order_ls test_fast_nvector test_radau test_study_tasks
-  test_study_sweep:StudySweep.ForkedWorkers*:StudySweep.AKilled*:StudySweep.Interrupted*"
+  test_study_sweep:StudySweep.ForkedWorkers*"
 tests=""
 for t in ${SANITIZE_TESTS:-$default_tests}; do
   [ -f "tests/${t%%:*}.cpp" ] && tests="$tests $t"

@@ -121,22 +121,26 @@ TEST(StudyTask, WorkerProcessesGiveTheSerialRunsBitForBit) {
 
 // --max-wall: the run stops itself at the limit (cooperatively, between steps).
 TEST(StudyTask, MaxWallEndsALongRunAsTimedOut) {
-  const TaskSpec t = engine_tasks(1, 1.0, 0.05).front();
-  const auto t0 = std::chrono::steady_clock::now();
+  const TaskSpec t = engine_tasks(1, 1.0, 0.05).front();  // 1 s of engine: seconds of work
   const RunData d = run_task(t);
-  const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   EXPECT_EQ(d.status, CaseStatus::failed);
   EXPECT_NE(d.message.find("timed out: wall time above --max-wall 0.05 s"), std::string::npos)
       << d.message;
-  EXPECT_LT(secs, 5.0);    // far below the run's own length (about 3 s), not a timing assertion
-  EXPECT_GT(d.rows(), 0);  // the rows before the limit are kept
+  // stopped on the way (the rows reached, if any, are kept)
+  EXPECT_TRUE(d.time.empty() || d.time.back() < 1.0 - 1e-9);
 }
 
 // A worker stuck beyond the hard limit is killed; the other tasks complete.
+// The limit is set from the short task's own duration here (a sanitizer
+// build runs 10x slower), the long task takes some 30 times as long.
 TEST(StudyTask, HardWallKillsTheWorker) {
   auto tasks = engine_tasks(2, 0.005);
-  tasks[1] = engine_tasks(1, 1.0).front();  // about 3 s, no limit of its own
-  const auto out = run_all(*process_runner(2, 0.5), tasks);
+  const auto t0 = std::chrono::steady_clock::now();
+  ASSERT_EQ(run_task(tasks[0]).status, CaseStatus::completed);
+  const double shortest =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  tasks[1] = engine_tasks(1, 1.0).front();  // no limit of its own
+  const auto out = run_all(*process_runner(2, 4.0 * shortest + 0.5), tasks);
   EXPECT_EQ(out[0].status, CaseStatus::completed) << out[0].message;
   EXPECT_EQ(out[1].status, CaseStatus::failed);
   EXPECT_NE(out[1].message.find("timed out: the worker was killed after"), std::string::npos)
