@@ -16,7 +16,8 @@
 //   sweep.h5         the grid, every task's status, statistics and channels,
 //                    order spectra of every channel (crank-angle grid), the
 //                    mean speed of every point and the Campbell data;
-//                    rewritten (atomically) after every task.
+//                    rewritten (atomically) at most every 10 s while tasks
+//                    end, and at the end.
 //   sweep.csv, .md   the table.
 //   order_cuts.png, waterfall.png, campbell.png, and their .gp scripts.
 #pragma once
