@@ -89,8 +89,8 @@ void add_common(po::options_description& o) {
       "param,p", po::value<std::vector<std::string>>()->composing(),
       "ITEM.KEY=VALUE: change a scene parameter before the study, repeatable. ITEM is a glob "
       "over the names of bodies, markers and elements (every match changes; e.g. "
-      "'main*.clearance=5e-5') or time, integrator, output; KEY may go deeper with dots "
-      "(shaft.lof.speed); VALUE is YAML (3e-5, quadrature, [1e6, 1e6, 1e6])")(
+      "'main*.clearance=5e-5') or time, integrator, output, operating_point; KEY may go deeper "
+      "with dots (shaft.lof.speed); VALUE is YAML (3e-5, quadrature, [1e6, 1e6, 1e6])")(
       "t-end", po::value<double>(), "end time [s] (shortcut for --param time.end=X)")(
       "channels", po::value<std::string>(),
       "comma-separated globs over the output channel names, e.g. 'main*.fx,main*.fy' "
@@ -169,8 +169,8 @@ study::Options common_options(const po::variables_map& vm, const std::string& su
                        " ranks are the workers");
     o.runner = mpi_runner();
   } else if (jobs > 1) {
-    // a worker stuck inside one step is killed a while after --max-wall
-    o.runner = study::process_runner(jobs, o.max_wall > 0.0 ? 1.5 * o.max_wall + 10.0 : 0.0);
+    // a worker stuck inside one step is killed a while after its task's --max-wall
+    o.runner = study::process_runner(jobs);
   }
   study::parse_norm(o.norm);  // bad values are input errors before anything runs
   return o;

@@ -70,9 +70,10 @@ int main(int argc, char** argv) {
     ~MpiEnd() { evas::cli::mpi_finish(); }
   } mpi_end;
   try {
+    // MPI first: the plug-ins then load after MPI_Init on every rank alike
+    const auto job = evas::cli::mpi_start(&argc, &argv, cmd);
     load_plugins(args);
-    if (const auto job = evas::cli::mpi_start(&argc, &argv); job.active && job.rank > 0)
-      return evas::cli::mpi_worker_loop();
+    if (job.active && job.rank > 0) return evas::cli::mpi_worker_loop();
     if (cmd == "run") return evas::cli::cmd_run(args);
     if (cmd == "info") return evas::cli::cmd_info(args);
     if (cmd == "export") return evas::cli::cmd_export(args);

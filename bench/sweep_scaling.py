@@ -113,8 +113,9 @@ def main():
     if have_mpi:
         head += " `mpirun -n 2` [s] | efficiency |"
         sep += "---:|---:|"
-    head += " outside the runs, per point [s] | coordinator wall, processor [s] | concurrency |"
-    sep += "---:|---:|---:|"
+    head += (" bound [-] | outside the runs, per point [s] | coordinator wall, processor [s] |"
+             " concurrency |")
+    sep += "---:|---:|---:|---:|"
     print(head)
     print(sep)
     for t_end, med, walls, serial_tasks, ratio, lo, hi, coord, cpu in rows:
@@ -122,11 +123,39 @@ def main():
         line = "| %g s | %.2f | %.2f | %.2f |" % (t_end, t1, med["jobs2"], t1 / (2 * med["jobs2"]))
         if have_mpi:
             line += " %.2f | %.2f |" % (med["mpi"], t1 / (2 * med["mpi"]))
-        line += " %.3f | %.2f, %.2f | %.2f (%.2f to %.2f) |" % (
-            (t1 - serial_tasks) / 8, coord, cpu, ratio, lo, hi)
+        # Amdahl: the coordinator's own wall time does not shrink with workers
+        bound = t1 / (2 * (coord + (t1 - coord) / 2))
+        line += " %.2f | %.3f | %.2f, %.2f | %.2f (%.2f to %.2f) |" % (
+            bound, (t1 - serial_tasks) / 8, coord, cpu, ratio, lo, hi)
         print(line)
+    print("\nBound = the efficiency the serial share alone allows (Amdahl): T1 / (2 (C + "
+          "(T1 - C) / 2)) with C the coordinator's wall time above, which two workers do not "
+          "shorten (reading every point's scene before any run, the sweep files, the "
+          "figures).")
     if not have_mpi:
         print("\n(mpirun was not found: no MPI column.)")
+    else:
+        # the fixed cost of an MPI start: a 2-point sweep of 1-ms runs
+        fixed = {m: [] for m in ("jobs2", "mpi")}
+        tmp = tempfile.mkdtemp(prefix="evas-sweep-bench.")
+        try:
+            for r in range(REPEATS):
+                for m in fixed:
+                    out = os.path.join(tmp, "%s-%d" % (m, r))
+                    cmd = [evas, "study", "sweep", scene, "--t-end", "0.001", "--sweep",
+                           "crank.lof.speed=300,310", "--out", out, "--quiet", "--no-plot"]
+                    if m == "mpi":
+                        cmd = ["mpirun", "--allow-run-as-root", "--oversubscribe", "-n", "2"] + cmd
+                    else:
+                        cmd += ["--jobs", "2"]
+                    fixed[m].append(run(cmd))
+        finally:
+            shutil.rmtree(tmp, ignore_errors=True)
+        a, b = statistics.median(fixed["mpi"]), statistics.median(fixed["jobs2"])
+        print("\nMPI start-up: a 2-point sweep of 1-ms runs takes %.2f s under `mpirun -n 2` "
+              "against %.2f s with `--jobs 2` (median of %d): %.2f s per command for mpirun "
+              "and MPI_Init/MPI_Finalize, which the MPI column pays on top.\n"
+              % (a, b, REPEATS, a - b))
 
     # projection: 48 points x 6 integrator settings on 64 cores
     t_end, med, walls, serial_tasks, ratio, lo, hi, coord, cpu = rows[-1]

@@ -121,6 +121,16 @@ void PistonConrod::set_pressure_map(std::shared_ptr<const PressureMap> map) {
   gas_map_ = std::move(map);
 }
 
+std::string PistonConrod::load_source() const {
+  return gas_map_ && gas_map_->has_loads() ? "pressure map " + gas_map_->source() : std::string();
+}
+
+void PistonConrod::set_operating_load(double load) {
+  if (!gas_map_ || !gas_map_->has_loads()) return;
+  gas_map_->check_load(load, "piston-conrod '" + name() + "'");
+  load_ = load;
+}
+
 PistonConrod::State PistonConrod::state(double t, const MarkerMotion* m) const {
   if (!p_.coupled) return state(t);
   double theta, thd, thdd;
@@ -152,9 +162,12 @@ PistonConrod::State PistonConrod::state_at(double theta, double thd, double thdd
   s.xdd = p_.eq2_side_force ? -sc_.R * thd * thd * (cs + lam * std::cos(2 * theta))
                             : ddx * thd * thd + dx * thdd;
   const double dxdd = p_.eq2_side_force ? 0.0 : dx;  // d xdd / d thdd
-  s.p = gas_map_ ? (*gas_map_)(theta, thd) - p_.crankcase_pressure
-        : gas_   ? (*gas_)(theta)-p_.crankcase_pressure
-                 : 0.0;
+  // (a map without loads: the speed interpolation alone, as before loads existed)
+  s.p = gas_map_
+            ? (gas_map_->has_loads() ? (*gas_map_)(theta, thd, load_) : (*gas_map_)(theta, thd)) -
+                  p_.crankcase_pressure
+        : gas_ ? (*gas_)(theta)-p_.crankcase_pressure
+               : 0.0;
   s.Fc = s.p * area_;
   s.sin_phi = lam * sn;
   s.cos_phi = std::sqrt(1.0 - s.sin_phi * s.sin_phi);
@@ -286,8 +299,10 @@ ElementType piston_conrod_element_type() {
   pressure_file.is_path = true;
   ParamSpec pressure_map = text_param(
       "pressure_map",
-      "pressure tables at several speeds: a file of 'speed_rpm table_file' lines, interpolated "
-      "linearly in the prescribed crank speed (mode prescribed; in place of pressure_file)",
+      "pressure tables at several speeds (and loads): a file of 'speed_rpm table_file' lines, "
+      "interpolated linearly in the prescribed crank speed, or of 'speed_rpm load table_file' "
+      "lines, also linearly in the scene's operating_point.load (mode prescribed; in place of "
+      "pressure_file)",
       {}, "");
   pressure_map.is_path = true;
   ElementType t;

@@ -45,7 +45,9 @@
 //     own acceleration does not act on the piston (as in prescribed mode).
 #pragma once
 
+#include <limits>
 #include <memory>
+#include <string>
 
 #include "elements/gas_pressure.h"
 #include "elements/prescribed_speed.h"
@@ -154,12 +156,21 @@ class PistonConrod : public Element {
   /// at the prescribed crank speed. Mode prescribed only; the speed (its own,
   /// or the crank's when it follows) must stay inside the map's speeds.
   void set_pressure_map(std::shared_ptr<const PressureMap> map);
+  /// A map with a load column reads the scene's operating_point.load.
+  std::string load_source() const override;
+  /// The load at which a map with loads is read, constant over the run; throws
+  /// InputError naming the element, the map and its loads when outside them.
+  /// Without such a map: nothing to read it (the scene reader refuses the load).
+  void set_operating_load(double load) override;
 
  private:
   PistonConrodParams p_;
   PrescribedSpeed drive_;  // mode prescribed: crank angle since t = 0, speed, acceleration
   std::shared_ptr<const PressureTable> gas_;
   std::shared_ptr<const PressureMap> gas_map_;  // in place of gas_ (set_pressure_map)
+  // operating_point.load [the map's unit] for a map with loads; NaN until set
+  // (the scene reader refuses such a map without a load)
+  double load_ = std::numeric_limits<double>::quiet_NaN();
   SliderCrank sc_;
   Vec3 ec_, ea_, es_;  // block axes
   double area_, h_L_;

@@ -40,13 +40,23 @@ Scene SceneReader::read(const Node& root) {
   }
   check_keys(root, item,
              {"name", "description", "gravity", "bodies", "markers", "elements", "joints",
-              "integrator", "time", "output"});
+              "integrator", "time", "output", "operating_point"});
   scene.name = root["name"] ? text(root["name"], item, "name")
                             : std::filesystem::path(file_).stem().string();
   scene.model = std::make_unique<Model>();
   Model& model = *scene.model;
   if (root["description"]) text(root["description"], item, "description");
   model.gravity = vec3_or(root, "gravity", item, Vec3::Zero());
+
+  // The load is read before the elements: each element that reads it (a
+  // piston's pressure map with loads) takes it as it is made.
+  if (const Node op = root["operating_point"]) {
+    check_keys(op, "operating_point", {"load"});
+    if (const Node load = op["load"]) {
+      load_ = number(load, "operating_point", "load");
+      load_node_.reset(load);
+    }
+  }
 
   const Node bodies = require(root, "bodies", item);
   if (!bodies.IsSequence() || bodies.size() == 0)
@@ -64,6 +74,11 @@ Scene SceneReader::read(const Node& root) {
     check_size(elements, "scene", "elements", kMaxSceneItems);
     for (std::size_t i = 0; i < elements.size(); ++i) read_element(elements[i], i, model);
   }
+  if (load_ && !load_read_)
+    fail(load_node_, "operating_point",
+         "'load' is given, but no element reads a load (no prescribed piston has a pressure_map "
+         "with a load column), so it would be ignored: remove it, or give the maps a load "
+         "column");
   if (const Node joints = root["joints"]) {
     if (!joints.IsSequence()) fail(joints, "joints", "must be a list of joints");
     check_size(joints, "scene", "joints", kMaxSceneItems);

@@ -1,5 +1,6 @@
-// Scene files (YAML): bodies, markers, elements, integrator, time span and
-// outputs of one simulation. The format is described in docs/user-guide.md
+// Scene files (YAML): bodies, markers, elements, integrator, time span,
+// outputs and operating point (the load; the speed is the crank LOF's) of one
+// simulation. The format is described in docs/user-guide.md
 // ("Scene files"). Every error is an InputError of the form
 //     <file>:<line>: <item>: <what is wrong>
 // and every unknown key is an error. Element parameters are read through the

@@ -58,6 +58,22 @@ void SceneReader::connect_crank_speed(Element& el, const Node& e, const std::str
              "); omit the element's 'speed' to follow the crank");
 }
 
+// The operating point's load is stated once, in the scene's operating_point
+// (read before the elements): an element whose data need it (a pressure map
+// with a load column) takes it, and one that needs it without a load given is
+// refused, naming the element and what reads the load.
+void SceneReader::connect_operating_load(Element& el, const Node& e, const std::string& item) {
+  const std::string source = el.load_source();
+  if (source.empty()) return;
+  if (!load_)
+    fail(e, item,
+         "its " + source +
+             " has a load column, but the scene gives no operating_point.load: add "
+             "'operating_point: {load: L}' (the load at which the map is read)");
+  el.set_operating_load(*load_);
+  load_read_ = true;
+}
+
 void SceneReader::read_element(const Node& e, std::size_t i, Model& model) {
   std::string item = "elements[" + std::to_string(i) + "]";
   expect_map(e, item);
@@ -152,6 +168,7 @@ void SceneReader::read_element(const Node& e, std::size_t i, Model& model) {
     complete_params(*type, values, file_ + ":" + std::to_string(e.Mark().line + 1) + ": " + item);
     std::unique_ptr<Element> element = type->make(name, idx, values);
     connect_crank_speed(*element, e, item, model);
+    connect_operating_load(*element, e, item);
     model.add_element(std::move(element));
   } catch (const InputError& err) {
     const std::string msg = err.what();

@@ -14,6 +14,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <set>
 #include <string>
 #include <utility>
@@ -202,12 +203,18 @@ class SceneReader {
   void read_marker(const Node& m, std::size_t i, Model& model);
   void read_element(const Node& e, std::size_t i, Model& model);
   void connect_crank_speed(Element& el, const Node& e, const std::string& item, const Model& model);
+  void connect_operating_load(Element& el, const Node& e, const std::string& item);
   void read_joint(const Node& e, std::size_t i, Model& model);
   IntegratorSettings read_integrator(const Node& n) const;
   OutputSpec read_output(const Node& n, const Model& model, double t_start, double t_end) const;
 
   std::string file_;
   std::filesystem::path dir_;
+  // operating_point.load (stated once in the scene), its node for errors, and
+  // whether an element read it
+  std::optional<double> load_;
+  Node load_node_;
+  bool load_read_ = false;
 };
 
 }  // namespace evas::scene_detail

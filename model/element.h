@@ -163,6 +163,17 @@ class Element {
   /// under a varying speed).
   virtual void follow_speed(const SpeedProfile& crank) { (void)crank; }
 
+  // --- The engine's load (operating_point.load, stated once in the scene) ---
+  // An element whose data depend on the engine load (a prescribed piston whose
+  // pressure map has a load column) says what reads it; the scene reader hands
+  // it the scene's load, refuses a scene that gives none, and refuses a load
+  // that no element reads (it would be ignored without a word).
+  /// What reads the load (e.g. "pressure map FILE"), empty when nothing does.
+  virtual std::string load_source() const { return {}; }
+  /// The scene's load, constant over the run. Throws InputError when the
+  /// element's data do not reach it.
+  virtual void set_operating_load(double load) { (void)load; }
+
  protected:
   Element(std::string name, std::vector<int> markers)
       : name_(std::move(name)), markers_(std::move(markers)) {}

@@ -3,6 +3,8 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstring>
+#include <stdexcept>
 
 namespace evas {
 
@@ -68,6 +70,59 @@ std::string stats_json_members(const IntegratorStats& s, const std::string& inde
     out += indent + "\"" + f.name + "\": " + stat_text(f, s);
   }
   return out;
+}
+
+namespace {
+
+// Every field, in declaration order, handed to `f` (a long, double or int).
+template <class S, class F>
+void each_field(S& s, F&& f) {
+  f(s.steps);
+  f(s.residual_evals);
+  f(s.jacobian_evals);
+  f(s.linear_setups);
+  f(s.linear_solves);
+  f(s.nonlinear_iterations);
+  f(s.error_test_failures);
+  f(s.convergence_failures);
+  f(s.restarts);
+  f(s.refused_states);
+  f(s.substeps);
+  f(s.max_step_iterations);
+  f(s.wall_seconds);
+  f(s.last_step);
+  f(s.min_step);
+  f(s.max_step);
+  f(s.last_order);
+  f(s.max_constraint);
+  f(s.max_constraint_rate);
+}
+
+// a new field must be added to each_field (and to stat_fields)
+static_assert(sizeof(IntegratorStats) == 12 * sizeof(long) + 6 * sizeof(double) + 8,
+              "IntegratorStats changed: update each_field");
+
+}  // namespace
+
+std::string stats_to_bytes(const IntegratorStats& s) {
+  std::string out;
+  each_field(s, [&](const auto& v) { out.append(reinterpret_cast<const char*>(&v), sizeof v); });
+  return out;
+}
+
+IntegratorStats stats_from_bytes(const std::string& bytes) {
+  IntegratorStats s;
+  std::size_t need = 0;
+  each_field(s, [&](const auto& v) { need += sizeof v; });
+  if (bytes.size() != need)
+    throw std::runtime_error("statistics of " + std::to_string(bytes.size()) + " bytes, expected " +
+                             std::to_string(need));
+  std::size_t pos = 0;
+  each_field(s, [&](auto& v) {
+    std::memcpy(&v, bytes.data() + pos, sizeof v);
+    pos += sizeof v;
+  });
+  return s;
 }
 
 }  // namespace evas

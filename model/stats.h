@@ -43,6 +43,12 @@ struct StatField {
 /// Every IntegratorStats field, in declaration order.
 const std::vector<StatField>& stat_fields();
 
+/// The statistics as exact bytes, field after field (no padding bytes, whose
+/// values C++ leaves open), and back. stats_from_bytes throws
+/// std::runtime_error when the size is not that of every field.
+std::string stats_to_bytes(const IntegratorStats& s);
+IntegratorStats stats_from_bytes(const std::string& bytes);
+
 /// The value as files write it: an integer for a count, else 17 digits ("null"
 /// when not finite, as JSON has no NaN).
 std::string stat_text(const StatField& f, const IntegratorStats& s);

@@ -55,7 +55,7 @@ std::string edit_scene_text(const std::string& text, const std::vector<std::stri
     if (path.size() < 2 || lhs.back() == '.')
       throw InputError(where +
                        ": expected ITEM.KEY=VALUE (ITEM a body, marker or element "
-                       "name, or time, integrator, output)");
+                       "name, or time, integrator, output, operating_point)");
     for (const auto& p : path)
       if (p.empty()) throw InputError(where + ": empty name in '" + lhs + "'");
     if (value.empty()) throw InputError(where + ": empty value");
@@ -87,15 +87,16 @@ std::string edit_scene_text(const std::string& text, const std::vector<std::stri
       if (top && top.IsMap()) {
         set_path(top, keys, value);
         matched = 1;
-      } else if (!top && (item == "time" || item == "integrator" || item == "output")) {
+      } else if (!top && (item == "time" || item == "integrator" || item == "output" ||
+                          item == "operating_point")) {
         root[item] = YAML::Node(YAML::NodeType::Map);
         set_path(root[item], keys, value);
         matched = 1;
       }
     }
     if (matched == 0)
-      throw InputError(where + ": no body, marker or element named '" + item +
-                       "' (known: " + join(known) + "; or time, integrator, output)");
+      throw InputError(where + ": no body, marker or element named '" + item + "' (known: " +
+                       join(known) + "; or time, integrator, output, operating_point)");
   }
   YAML::Emitter out;
   out << root;

@@ -4,7 +4,8 @@
 //
 //   ITEM  a glob ('*', '?') over the `name` of the scene's bodies, markers and
 //         elements (every match is changed), or a top-level mapping such as
-//         `time`, `integrator`, `output`;
+//         `time`, `integrator`, `output`, `operating_point` (created when
+//         the scene has none: `operating_point.load=0.5` on any scene);
 //   KEY   the key in that item; dots go deeper (`shaft.lof.speed`);
 //   VALUE a YAML value: a scalar (`3e-5`, `quadrature`) or a flow list (`[1e6, 1e6, 1e6]`).
 //

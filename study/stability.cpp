@@ -27,6 +27,8 @@ const char* to_text(StabilityStatus s) {
       return "reference failed";
     case StabilityStatus::interrupted:
       return "interrupted";
+    case StabilityStatus::timed_out:
+      return "timed out";
     case StabilityStatus::not_run:
       break;
   }
@@ -288,10 +290,12 @@ StabilityResult stability(const Options& opt, const CaseInput& spec, const Stabi
       TaskSpec t;
       t.src = q.src;
       t.channels = s.channels;
-      t.max_wall = opt.max_wall;
       if (q.phase == Search::Phase::reference) {
+        // --max-wall limits the trials, not the reference: a tight-tolerance
+        // run is meant to take long
         t.settings = ref_case.settings;
       } else {
+        t.max_wall = opt.max_wall;
         t.settings = res.c.settings;
         t.settings.step = q.h;
         t.limit = q.bound;
@@ -334,6 +338,16 @@ StabilityResult stability(const Options& opt, const CaseInput& spec, const Stabi
         continue;
       }
       const RunData& d = runs[i];
+      if (d.status == CaseStatus::failed && d.message.rfind("timed out", 0) == 0) {
+        // neither stable nor unstable: the search ends, its bracket kept
+        ++p.runs;
+        if (p.status == StabilityStatus::not_run || p.status == StabilityStatus::bracketed)
+          p.status = StabilityStatus::timed_out;
+        p.message = "h = " + gnum(q.h, 6) + " s: " + d.message;
+        q.phase = Search::Phase::done;
+        say(opt, "evas study: " + q.tag + p.message);
+        continue;
+      }
       const bool ok = d.status == CaseStatus::completed;
       say(opt, "evas study: " + q.tag + "h = " + gnum(q.h, 6) +
                    " s: " + (ok ? std::string("stable") : "unstable: " + d.message));

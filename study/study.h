@@ -132,18 +132,22 @@ struct StabilityOptions {
 
 /// Outcome of the stability search at one sweep value: bracketed (limit
 /// between h_stable and h_unstable), stable up to HMAX, unstable at HMIN,
-/// reference failed, interrupted or not run.
+/// reference failed, interrupted, timed out (a trial ran past --max-wall: it
+/// says nothing of stability, so the search ends there with its bracket so
+/// far) or not run.
 enum class StabilityStatus {
   not_run,
   bracketed,
   stable_to_hmax,
   unstable_at_hmin,
   reference_failed,
-  interrupted
+  interrupted,
+  timed_out
 };
 
 /// "not run", "bracketed", "stable up to HMAX", "unstable at HMIN",
-/// "reference failed" or "interrupted": the text written to every file.
+/// "reference failed", "interrupted" or "timed out": the text written to
+/// every file.
 const char* to_text(StabilityStatus s);
 
 /// Result of the search at one sweep value.

@@ -170,6 +170,7 @@ SweepResult sweep(const Options& opt, const SweepOptions& so) {
     return task_key(res.keys, res.tasks[k].values,
                     res.cases[static_cast<std::size_t>(res.tasks[k].case_index)]);
   };
+  auto print_of = [&](std::size_t k) { return task_fingerprint(tasks[k]); };
   auto record = [&](std::size_t k, const RunData& run, const std::string& worker) {
     SweepTask& t = res.tasks[k];
     t.data = run;
@@ -199,7 +200,7 @@ SweepResult sweep(const Options& opt, const SweepOptions& so) {
       return res;
     }
     record(k, run, "this process (--point)");
-    write_task_file(dir / task_file_name(so.point), d, k, key_of(k));
+    write_task_file(dir / task_file_name(so.point), d, k, key_of(k), print_of(k));
     res.info.files.push_back((dir / task_file_name(so.point)).string());
     res.runner = "one task (--point)";
     say(opt, "evas study sweep: task " + std::to_string(k) + " " + to_text(run.status));
@@ -215,7 +216,8 @@ SweepResult sweep(const Options& opt, const SweepOptions& so) {
   std::vector<int> todo;
   for (std::size_t k = 0; k < tasks.size(); ++k) {
     const fs::path f = dir / task_file_name(static_cast<int>(k));
-    if ((so.resume || so.merge) && fs::exists(f) && read_task_file(f, d, k, key_of(k))) {
+    if ((so.resume || so.merge) && fs::exists(f) &&
+        read_task_file(f, d, k, key_of(k), print_of(k))) {
       analyse_task(d, so, k);
       if (so.merge || res.tasks[k].result.status == CaseStatus::completed) {
         ++res.resumed;
@@ -241,7 +243,7 @@ SweepResult sweep(const Options& opt, const SweepOptions& so) {
         const auto busy = Clock::now();
         const auto k = static_cast<std::size_t>(e.index);
         record(k, e.run, e.worker);
-        write_task_file(dir / task_file_name(e.index), d, k, key_of(k));
+        write_task_file(dir / task_file_name(e.index), d, k, key_of(k), print_of(k));
         ++finished;
         say(opt, "[" + std::to_string(finished) + "/" + std::to_string(todo.size()) + "] task " +
                      std::to_string(k) + " (" + key_of(k) + "): " + to_text(e.run.status) +

@@ -29,10 +29,14 @@ void analyse_task(SweepData& d, const SweepOptions& so, std::size_t k);
 std::vector<NaturalFrequency> campbell_frequencies(const SceneSource& src, const SweepData& d,
                                                    const SweepOptions& so);
 
+/// Task k's file: its key (the point and case, readable), its fingerprint
+/// (task_fingerprint: what it computes), status, channels and statistics.
 void write_task_file(const fs::path& path, const SweepData& d, std::size_t k,
-                     const std::string& key);
-/// Reads a task file into task k when its key matches; false otherwise.
-bool read_task_file(const fs::path& path, SweepData& d, std::size_t k, const std::string& key);
+                     const std::string& key, const std::string& fingerprint);
+/// Reads a task file into task k when its key and fingerprint match; false
+/// otherwise (another sweep's, an edited scene's, or an unreadable file).
+bool read_task_file(const fs::path& path, SweepData& d, std::size_t k, const std::string& key,
+                    const std::string& fingerprint);
 
 void write_sweep_tables(const Options& opt, SweepData& d);
 void write_sweep_h5(const Options& opt, SweepData& d, const SweepOptions& so);

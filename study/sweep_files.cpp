@@ -36,9 +36,9 @@ void write_channels(hid_t g, const RunData& run) {
 
 // The statistics' bytes (exact) as a little int32 array, beside readable attributes.
 void write_stats(hid_t g, const IntegratorStats& s) {
-  unsigned char raw[sizeof s];
-  std::memcpy(raw, &s, sizeof s);
-  std::vector<int> bytes(raw, raw + sizeof s);
+  const std::string raw = stats_to_bytes(s);
+  std::vector<int> bytes;
+  for (char c : raw) bytes.push_back(static_cast<unsigned char>(c));
   h5::write_int32s(g, "stats_bytes", {bytes.size()}, bytes.data(), false);
   for (const auto& f : stat_fields())
     h5::write_attribute(g, std::string("stats.") + f.name, f.get(s));
@@ -78,10 +78,11 @@ void analyse_task(SweepData& d, const SweepOptions& so, std::size_t k) {
 }
 
 void write_task_file(const fs::path& path, const SweepData& d, std::size_t k,
-                     const std::string& key) {
+                     const std::string& key, const std::string& fingerprint) {
   const SweepTask& t = d.res.tasks[k];
   write_h5_atomic(path, [&](hid_t f) {
     h5::write_attribute(f, "task", key);
+    h5::write_attribute(f, "fingerprint", fingerprint);
     h5::write_attribute(f, "index", static_cast<long long>(k));
     h5::write_attribute(f, "status", std::string(to_text(t.result.status)));
     h5::write_attribute(f, "message", t.result.message);
@@ -94,11 +95,13 @@ void write_task_file(const fs::path& path, const SweepData& d, std::size_t k,
   });
 }
 
-bool read_task_file(const fs::path& path, SweepData& d, std::size_t k, const std::string& key) {
+bool read_task_file(const fs::path& path, SweepData& d, std::size_t k, const std::string& key,
+                    const std::string& fingerprint) {
   try {
     h5::Quiet quiet;
     h5::Handle f = h5::open_file(path.string());
     if (h5::read_string_attribute(f, "task") != key) return false;
+    if (h5::read_string_attribute(f, "fingerprint") != fingerprint) return false;
     if (h5::read_strings(f, "names") != d.names) return false;
     RunData run;
     const std::string status = h5::read_string_attribute(f, "status");
@@ -111,16 +114,19 @@ bool read_task_file(const fs::path& path, SweepData& d, std::size_t k, const std
     run.time = h5::read_doubles(f, "time", dims);
     run.crank = h5::read_doubles(f, "crank_angle", dims);
     const std::vector<double> v = h5::read_doubles(f, "values", dims);
-    if (dims.size() != 2 || dims[0] != run.time.size() || dims[1] != d.names.size()) return false;
+    // a run that failed before its first output has no rows (and as a
+    // worker's failure no columns either: 0 x 0, as it was sent)
+    if (dims.size() != 2 || dims[0] != run.time.size() ||
+        (dims[1] != d.names.size() && dims[0] != 0))
+      return false;
     run.y.resize(static_cast<long>(dims[0]), static_cast<long>(dims[1]));
     for (long r = 0; r < run.y.rows(); ++r)
       for (long c = 0; c < run.y.cols(); ++c)
         run.y(r, c) = v[static_cast<std::size_t>(r * run.y.cols() + c)];
     const std::vector<long long> bytes = h5::read_int64s(f, "stats_bytes", dims);
-    if (bytes.size() != sizeof(IntegratorStats)) return false;
-    unsigned char raw[sizeof(IntegratorStats)];
-    for (std::size_t i = 0; i < bytes.size(); ++i) raw[i] = static_cast<unsigned char>(bytes[i]);
-    std::memcpy(&run.stats, raw, sizeof raw);
+    std::string raw;
+    for (long long b : bytes) raw += static_cast<char>(static_cast<unsigned char>(b));
+    run.stats = stats_from_bytes(raw);  // throws on a wrong size: the task runs again
     SweepTask& t = d.res.tasks[k];
     t.data = std::move(run);
     t.worker = h5::read_string_attribute(f, "worker") + " (earlier run)";

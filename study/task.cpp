@@ -3,6 +3,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <stdexcept>
 #include <type_traits>
@@ -174,7 +175,7 @@ std::string pack_run(const RunData& d) {
   w.raw<std::int64_t>(d.y.rows());
   w.raw<std::int64_t>(d.y.cols());
   w.reals(d.y.data(), static_cast<std::size_t>(d.y.size()));
-  w.raw(d.stats);
+  w.text(stats_to_bytes(d.stats));
   w.raw(d.wall);
   return w.take();
 }
@@ -194,10 +195,23 @@ RunData unpack_run(const std::string& bytes) {
   if (rows < 0 || cols < 0 || static_cast<std::size_t>(rows * cols) != y.size())
     throw std::runtime_error("malformed run values");
   d.y = Eigen::Map<const Mat>(y.data(), rows, cols);
-  d.stats = r.raw<IntegratorStats>();
+  d.stats = stats_from_bytes(r.text());
   d.wall = r.raw<double>();
   r.finish();
   return d;
+}
+
+std::string task_fingerprint(const TaskSpec& t) {
+  TaskSpec u = t;
+  u.max_wall = 0.0;
+  std::uint64_t h = 1469598103934665603ull;  // FNV-1a, 64 bits
+  for (unsigned char c : pack_task(u)) {
+    h ^= c;
+    h *= 1099511628211ull;
+  }
+  char hex[17];
+  std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(h));
+  return hex;
 }
 
 }  // namespace evas::study

@@ -35,6 +35,14 @@ RunData run_task(const TaskSpec& task, const std::function<bool()>& stop = nullp
 /// Exact byte forms. unpack_* throw std::runtime_error on a malformed buffer.
 std::string pack_task(const TaskSpec& t);
 TaskSpec unpack_task(const std::string& bytes);
+
+/// What a task computes, as 16 hex digits: a 64-bit FNV-1a hash of its bytes
+/// with max_wall left out (a time limit does not change what a completed run
+/// computes). A resumed or merged sweep keeps an earlier task file only when
+/// its fingerprint is this one: an edited scene, --t-end, --param or case
+/// runs again. The bodies' files are named by path in the scene; their
+/// contents are not in it.
+std::string task_fingerprint(const TaskSpec& t);
 std::string pack_run(const RunData& d);
 RunData unpack_run(const std::string& bytes);
 

@@ -42,39 +42,53 @@ class TaskRunner {
 /// Every task in this process, one after another.
 std::unique_ptr<TaskRunner> serial_runner();
 
-/// Up to `jobs` forked worker processes at once (one thread each). A worker
-/// still running `hard_wall` seconds after its start (0 = never) is killed:
-/// tasks limit themselves through TaskSpec::max_wall, this catches a worker
-/// stuck inside one step.
+/// Up to `jobs` forked worker processes at once (one thread each), each kept
+/// for the whole task list. A worker still running its task `hard_wall`
+/// seconds after the start (0: hard_wall_of the task's own max_wall) is
+/// killed: tasks limit themselves through TaskSpec::max_wall, this catches a
+/// worker stuck inside one step.
 std::unique_ptr<TaskRunner> process_runner(int jobs, double hard_wall = 0.0);
 
-/// One forked worker process running one task; its result comes back through
-/// a pipe. Used by the process runner and the MPI runner's own local worker.
+/// The hard limit after which a worker still busy with a task of `max_wall`
+/// seconds is killed (0 = never): the task limits itself cooperatively at
+/// max_wall; this catches a run stuck inside one step.
+double hard_wall_of(double max_wall);
+
+/// One forked worker process that runs tasks one after another: each task
+/// goes to it as pack_task bytes, each result comes back as pack_run bytes.
+/// A worker keeps its memory between tasks (the allocator's pages, the body
+/// cache), so the second and later tasks start as warm as in one process.
+/// Used by the process runner and by the MPI runner on every rank.
 class LocalWorker {
  public:
-  /// Forks; the child runs tasks[index] (run_task with `stop`), writes the
-  /// result bytes to the pipe and leaves with _exit. Throws std::runtime_error
-  /// when fork or pipe fails.
-  LocalWorker(int index, const TaskSpec& task, const std::function<bool()>& stop);
-  ~LocalWorker();  ///< kills and reaps a worker still running
+  /// Forks the worker; it waits for tasks and runs them with `stop` (checked
+  /// in the worker). Throws std::runtime_error when fork, pipe or socket fail.
+  explicit LocalWorker(const std::function<bool()>& stop);
+  ~LocalWorker();  ///< kills and reaps the worker
   LocalWorker(const LocalWorker&) = delete;
   LocalWorker& operator=(const LocalWorker&) = delete;
 
-  int fd() const { return fd_; }
+  /// Hands task `index` (its pack_task bytes) to an idle, live worker. False
+  /// when the worker is gone (it then is not alive; the task did not start).
+  bool start(int index, const std::string& task_bytes);
+  bool alive() const { return pid_ > 0; }
+  bool busy() const { return index_ >= 0; }
+  int fd() const { return from_; }  ///< readable when a result (or the end) comes
   int index() const { return index_; }
-  double seconds() const;  ///< since the start
-  /// Reads what the pipe holds; false at the end of the output (then finish()).
-  bool read_some();
-  /// Reaps the process and returns its task's end (failed with the reason when
-  /// it died, was killed or sent nothing readable).
-  TaskEnd finish();
-  void kill_now(const std::string& why);  ///< SIGKILL; finish() reports `why`
+  long pid() const { return pid_; }
+  double seconds() const;  ///< since the current task started
+  /// Reads what the worker sent. True when the current task ended: `end`
+  /// holds its result, or a failure with the reason when the worker died, was
+  /// killed or sent something unreadable (the worker is then not alive).
+  bool read_some(TaskEnd& end);
+  void kill_now(const std::string& why);  ///< SIGKILL; read_some reports `why`
 
  private:
-  int index_, fd_ = -1;
+  void reap();
+  int index_ = -1, to_ = -1, from_ = -1;
   long pid_ = -1;
   std::string bytes_, killed_;
-  double start_;
+  double start_ = 0.0;
 };
 
 /// The number of processors this process may use (at least 1).

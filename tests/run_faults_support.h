@@ -91,6 +91,37 @@ std::string demo_scene(const std::string& name_yaml, const std::string& t_end,
   return s;
 }
 
+// In a forked child: standard output and error to `log`.
+inline void output_to(const fs::path& log) {
+  const int fd = open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  if (fd >= 0) {
+    dup2(fd, 1);
+    dup2(fd, 2);
+    close(fd);
+  }
+}
+
+// Processes whose parent is `parent` (a study's forked workers, mpirun's
+// ranks), from /proc.
+inline std::vector<pid_t> children_of(pid_t parent) {
+  std::vector<pid_t> kids;
+  for (const auto& e : fs::directory_iterator("/proc")) {
+    const std::string name = e.path().filename();
+    if (name.find_first_not_of("0123456789") != std::string::npos) continue;
+    std::ifstream stat(e.path() / "stat");
+    std::string line;
+    std::getline(stat, line);
+    const auto close = line.rfind(')');
+    if (close == std::string::npos) continue;
+    std::istringstream rest(line.substr(close + 2));
+    char state;
+    int ppid = 0;
+    rest >> state >> ppid;
+    if (ppid == parent) kids.push_back(std::stoi(name));
+  }
+  return kids;
+}
+
 // Starts `evas ARGS...` in `cwd` with extra environment entries; stdout and
 // stderr go to `log`.
 pid_t spawn_evas(const std::vector<std::string>& args, const fs::path& log,
@@ -109,12 +140,7 @@ pid_t spawn_evas(const std::vector<std::string>& args, const fs::path& log,
   envp.push_back(nullptr);
   const pid_t pid = fork();
   if (pid == 0) {
-    const int fd = open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    if (fd >= 0) {
-      dup2(fd, 1);
-      dup2(fd, 2);
-      close(fd);
-    }
+    output_to(log);
     if (!cwd.empty() && chdir(cwd.c_str()) != 0) _exit(120);
     // default dispositions: a test run started under nohup (SIGHUP ignored, which
     // evas keeps, as it should) must still see evas handle the signals it sends

@@ -365,6 +365,7 @@ TEST(StudyStatus, TextIsTheWordTheFilesHold) {
   EXPECT_STREQ(to_text(StabilityStatus::unstable_at_hmin), "unstable at HMIN");
   EXPECT_STREQ(to_text(StabilityStatus::reference_failed), "reference failed");
   EXPECT_STREQ(to_text(StabilityStatus::interrupted), "interrupted");
+  EXPECT_STREQ(to_text(StabilityStatus::timed_out), "timed out");
   EXPECT_EQ(StabilityPoint{}.status, StabilityStatus::not_run);
 }
 
@@ -624,6 +625,32 @@ TEST(StudyStability, LinearAccelerationLimitIsTwoRootThreeOverOmega) {
   const double s = seconds_since(t0);
   std::cout << "stability study: " << s << " s\n";
   EXPECT_LT(s, 20.0);
+}
+
+// A trial cut short by --max-wall says nothing of stability: the search ends
+// "timed out" with its bracket so far (HMAX unstable here), not "unstable".
+// The reference is not limited.
+TEST(StudyStability, ATrialPastMaxWallEndsTheSearchAsTimedOut) {
+  TempDir dir("stab_wall");
+  const double w = oscillator_omega(), h_lim = 2 * std::sqrt(3.0) / w;
+  const std::string scene = dir.write("osc.yaml", oscillator_scene(300 * h_lim, h_lim / 8));
+  Options o = quiet_options(scene, dir.path() / "out");
+  o.reference = "ida rtol=1e-8 atol=1e-12";
+  o.channels = "spring.f*";
+  o.max_wall = 0.05;
+  StabilityOptions so;
+  so.h_min = 1e-5 * h_lim;  // 3e7 steps: far more than 0.05 s
+  so.h_max = 2.0 * h_lim;
+  so.bisections = 4;
+  const auto res =
+      stability(o, {"linear-acceleration iteration=newton step_control=fixed", ""}, so);
+  ASSERT_EQ(res.points.size(), 1u);
+  const auto& p = res.points[0];
+  EXPECT_EQ(p.status, StabilityStatus::timed_out) << to_text(p.status) << ": " << p.message;
+  EXPECT_EQ(p.runs, 2);
+  EXPECT_EQ(p.h_unstable, so.h_max);
+  EXPECT_TRUE(std::isnan(p.h_stable));
+  EXPECT_NE(p.message.find("timed out"), std::string::npos) << p.message;
 }
 
 // A sweep over the spring stiffness: the limit step scales as 1/sqrt(k).

@@ -100,26 +100,6 @@ std::string attribute(const fs::path& file, const std::string& name) {
   return h5::read_string_attribute(f, name);
 }
 
-// Children of a process (its forked workers), from /proc.
-std::vector<pid_t> children_of(pid_t parent) {
-  std::vector<pid_t> kids;
-  for (const auto& e : fs::directory_iterator("/proc")) {
-    const std::string name = e.path().filename();
-    if (name.find_first_not_of("0123456789") != std::string::npos) continue;
-    std::ifstream stat(e.path() / "stat");
-    std::string line;
-    std::getline(stat, line);
-    const auto close = line.rfind(')');
-    if (close == std::string::npos) continue;
-    std::istringstream rest(line.substr(close + 2));
-    char state;
-    int ppid = 0;
-    rest >> state >> ppid;
-    if (ppid == parent) kids.push_back(std::stoi(name));
-  }
-  return kids;
-}
-
 }  // namespace
 
 // One process against two forked workers: the same file, bit for bit; the
@@ -232,7 +212,7 @@ TEST(StudySweep, MpiRanksWriteTheSerialFiles) {
 }
 
 // kill -9 of one worker: its point is recorded as failed with the signal, the
-// other points complete, the study ends normally.
+// other points complete, the study ends normally; a --merge keeps the reason.
 TEST(StudySweep, AKilledWorkerIsRecordedAndTheOthersComplete) {
   TempFolder tmp;
   const pid_t pid = spawn_evas(
@@ -265,6 +245,14 @@ TEST(StudySweep, AKilledWorkerIsRecordedAndTheOthersComplete) {
        p = csv.find(",completed,", p + 1))
     ++completed;
   EXPECT_EQ(completed, 2) << csv;
+  // --merge rebuilds the files from points/: the reason stays
+  const Outcome merged = run_evas(
+      {"study", "sweep", kEngine, "--t-end", "0.5", "--sweep", "crank.lof.speed=300,320,340",
+       "--channels", "main1.fx", "--no-plot", "--merge", "--out", (tmp.path() / "k").string()},
+      tmp.path() / "m.log");
+  ASSERT_EQ(merged.code, 0) << merged.log;
+  EXPECT_TRUE(contains(read_text(tmp.path() / "k" / "sweep.md"),
+                       "worker pid " + std::to_string(victim) + " died of signal 9"));
 }
 
 // SIGTERM: the finished points stay (their files and a readable sweep file

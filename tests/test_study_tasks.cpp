@@ -117,6 +117,37 @@ TEST(StudyTask, WorkerProcessesGiveTheSerialRunsBitForBit) {
     expect_same_run(serial[i], forked[i]);
     EXPECT_EQ(workers[i].rfind("worker pid ", 0), 0u) << workers[i];
   }
+  // one worker runs the list one task after another (it is kept, warm)
+  std::vector<std::string> one;
+  const auto pooled = run_all(*process_runner(1), tasks, &one);
+  for (std::size_t i = 0; i < tasks.size(); ++i) {
+    expect_same_run(serial[i], pooled[i]);
+    EXPECT_EQ(one[i], one[0]);
+  }
+}
+
+// The statistics' bytes: every field, no padding, and back exactly.
+TEST(StudyTask, StatisticsBytesHoldEveryField) {
+  IntegratorStats s;
+  long n = 1;
+  for (long* f :
+       {&s.steps, &s.residual_evals, &s.jacobian_evals, &s.linear_setups, &s.linear_solves,
+        &s.nonlinear_iterations, &s.error_test_failures, &s.convergence_failures, &s.restarts,
+        &s.refused_states, &s.substeps, &s.max_step_iterations})
+    *f = ++n * 1000003;
+  s.wall_seconds = 0.1;
+  s.last_step = 1e-5;
+  s.min_step = 1e-9;
+  s.max_step = 1e-3;
+  s.last_order = 5;
+  s.max_constraint = 1e-12;
+  s.max_constraint_rate = 3e-10;
+  const std::string b = stats_to_bytes(s);
+  EXPECT_EQ(b.size(), 12 * sizeof(long) + 6 * sizeof(double) + sizeof(int));
+  const IntegratorStats t = stats_from_bytes(b);
+  EXPECT_EQ(stats_to_bytes(t), b);
+  for (const auto& f : stat_fields()) EXPECT_EQ(f.get(t), f.get(s)) << f.name;
+  EXPECT_THROW(stats_from_bytes(b + "x"), std::runtime_error);
 }
 
 // --max-wall: the run stops itself at the limit (cooperatively, between steps).
