@@ -292,6 +292,10 @@ ModalBody read_body(hid_t file) {
   if (dims.size() != 1)
     throw h5::Failure("dataset '/nodes/ids' has shape " + shape_text(dims) + ", expected (N,)");
   const hsize_t N = dims[0];
+  if (N == 0)
+    throw h5::Failure(
+        "the body has no nodes ('/nodes/ids' is empty): a modal body needs the nodes its "
+        "mode shapes are given at");
   body.node_ids.assign(ids.begin(), ids.end());
   // the ids in order: repeats are neighbours, and a set's members are found by
   // bisection (a block has thousands of nodes)

@@ -260,6 +260,13 @@ void generate_inputs(const fs::path& dir) {
     ids[1] = ids[0];
     replace_int64s(f, "/nodes/ids", {N}, ids.data());
   });
+  damaged("zero_nodes", [&](hid_t f) {  // every node-sized array empty, no sets
+    replace_int64s(f, "/nodes/ids", {0}, nullptr);
+    replace_doubles(f, "/nodes/coordinates", {0, 3}, nullptr);
+    replace_doubles(f, "/modes/shapes", {0, n}, nullptr);
+    replace_doubles(f, "/mass/lumped", {0}, nullptr);
+    H5Ldelete(f, "/sets", H5P_DEFAULT);
+  });
   damaged("missing_damping", [&](hid_t f) { H5Ldelete(f, "/modes/damping", H5P_DEFAULT); });
   damaged("wrong_shape", [&](hid_t f) {
     replace_doubles(f, "/modes/shapes", {3 * N - 1, n}, shapes.data());
