@@ -37,6 +37,7 @@
 // stop when not landing, so IDA never steps across a stop it must land on later.
 #include <ida/ida.h>
 #include <ida/ida_ls.h>
+#include <sunnonlinsol/sunnonlinsol_newton.h>
 
 #include <algorithm>
 #include <cmath>
@@ -109,9 +110,10 @@ class IdaIntegrator final : public Integrator {
     if (!mem_) throw RunError("ida: IDACreate failed");
     check(IDASetErrHandlerFn(mem_, &IdaIntegrator::error_cb, this), "IDASetErrHandlerFn");
     check(IDAInit(mem_, &IdaIntegrator::residual_cb, t0, y_.get(), yd_.get()), "IDAInit");
-    if (dae_ && dae_->m() > 0)
+    if (dae_ && dae_->m() > 0) {
       check(IDAWFtolerances(mem_, &IdaIntegrator::weights_cb), "IDAWFtolerances");
-    else
+      use_rescaling_convergence_test();
+    } else
       check(IDASStolerances(mem_, s.rtol, s.atol), "IDASStolerances");
     check(IDASetUserData(mem_, this), "IDASetUserData");
     if (s.linear_solver == "second-order") {
@@ -351,6 +353,47 @@ class IdaIntegrator final : public Integrator {
   void free_memory() {
     if (mem_) IDAFree(&mem_);
     mem_ = nullptr;
+    if (nls_) SUNNonlinSolFree(nls_);
+    nls_ = nullptr;
+  }
+
+  // The h^p weights of the multipliers (weights_cb) are computed once per
+  // step, at the step first tried. After a failed Newton iteration IDA retries
+  // with h cut by 4 (up to 10 times) and the same weights, while the round-off
+  // of g in the multipliers' corrections grows as 1/h: each retry then fails
+  // more surely than the last, and a step at a tight atol never converges
+  // (Andrews, GGL, rtol 1e-10, atol 1e-12: ten retries down to h = 2e-15 s).
+  // RADAU5 rescales its weights at every change of h (Hairer & Wanner 1996,
+  // VII.8). Here IDA's own Newton solver is kept, and its convergence test is
+  // wrapped: before IDA's test, the weights of the h^p components are
+  // rescaled to the step now tried. Only constrained problems take this path.
+  void use_rescaling_convergence_test() {
+    nls_ = SUNNonlinSol_Newton(y_.get(), ctx_);
+    if (!nls_) throw RunError("ida: SUNNonlinSol_Newton failed");
+    check(IDASetNonlinearSolver(mem_, nls_), "IDASetNonlinearSolver");
+    const auto* c = static_cast<SUNNonlinearSolverContent_Newton>(nls_->content);
+    ida_ctest_ = c->CTest;  // IDA's own test, set by IDASetNonlinearSolver
+    ida_ctest_data_ = c->ctest_data;
+    if (!ida_ctest_) throw RunError("ida: no convergence test to wrap");
+    if (SUNNonlinSolSetConvTestFn(nls_, &IdaIntegrator::conv_test_cb, this) != SUN_NLS_SUCCESS)
+      throw RunError("ida: SUNNonlinSolSetConvTestFn failed");
+  }
+
+  static int conv_test_cb(SUNNonlinearSolver nls, N_Vector ycor, N_Vector del, realtype tol,
+                          N_Vector ewt, void* user) {
+    auto* self = static_cast<IdaIntegrator*>(user);
+    double h = 0.0;
+    IDAGetCurrentStep(self->mem_, &h);
+    h = std::abs(h);
+    // weights made at h = 0 (the first step) are zero: they stay so
+    if (h > 0.0 && self->weights_h_ > 0.0 && h != self->weights_h_) {
+      double* wv = N_VGetArrayPointer(ewt);
+      const std::vector<int>& power = self->dae_->weight_power();
+      for (std::size_t i = 0; i < power.size(); ++i)
+        if (power[i] != 0) wv[i] = self->weights_base_[i] * std::pow(h, power[i]);
+      self->weights_h_ = h;
+    }
+    return self->ida_ctest_(nls, ycor, del, tol, ewt, self->ida_ctest_data_);
   }
 
   static int residual_cb(realtype t, N_Vector y, N_Vector yd, N_Vector r, void* user) {
@@ -413,10 +456,13 @@ class IdaIntegrator final : public Integrator {
     const double* yv = N_VGetArrayPointer(y);
     double* wv = N_VGetArrayPointer(w);
     const std::vector<int>& power = self->dae_->weight_power();
+    self->weights_base_.resize(power.size());
     for (std::size_t i = 0; i < power.size(); ++i) {
       const double base = 1.0 / (self->s_.rtol * std::abs(yv[i]) + self->s_.atol);
+      self->weights_base_[i] = base;
       wv[i] = power[i] == 0 ? base : base * std::pow(h, power[i]);
     }
+    self->weights_h_ = h;
     return 0;
   }
 
@@ -444,6 +490,11 @@ class IdaIntegrator final : public Integrator {
   Problem* p_ = nullptr;
   IntegratorSettings s_;
   void* mem_ = nullptr;
+  SUNNonlinearSolver nls_ = nullptr;  // constrained problems: IDA's Newton, its test wrapped
+  SUNNonlinSolConvTestFn ida_ctest_ = nullptr;
+  void* ida_ctest_data_ = nullptr;
+  std::vector<double> weights_base_;  // 1 / (rtol |y_i| + atol) at the last weights
+  double weights_h_ = 0.0;            // the h the weights were made for
   int n_ = 0;
   double t_ = 0.0;         // last time handed back to the caller
   IntegratorStats total_;  // finished segments, wall time, restarts, min/max step

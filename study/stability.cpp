@@ -46,11 +46,11 @@ void write_stability(const Options& opt, StabilityResult& res, const StabilityOp
   info.files.clear();
   const std::string key = res.sweep_key.empty() ? "sweep" : res.sweep_key;
   std::ostringstream csv;
-  csv << csv_field(key) << ",status,h_stable,h_unstable,runs,reference_max,message\n";
+  csv << csv_field(key) << ",status,h_stable,h_unstable,runs,reference_max,message,interpolation\n";
   for (const auto& p : res.points)
     csv << csv_field(p.value) << "," << csv_field(to_text(p.status)) << "," << gnum(p.h_stable, 9)
         << "," << gnum(p.h_unstable, 9) << "," << p.runs << "," << gnum(p.reference_max, 9) << ","
-        << csv_field(p.message) << "\n";
+        << csv_field(p.message) << "," << csv_field(p.interpolation) << "\n";
   write_file_atomic(dir / "stability.csv", csv.str());
   info.files.push_back((dir / "stability.csv").string());
 
@@ -75,6 +75,10 @@ void write_stability(const Options& opt, StabilityResult& res, const StabilityOp
     md << "| " << md_cell(p.value) << " | " << to_text(p.status) << " | " << gnum(p.h_stable, 6)
        << " | " << gnum(p.h_unstable, 6) << " | " << p.runs << " | " << md_cell(p.message, 90)
        << " |\n";
+  for (const auto& p : res.points)
+    if (!p.interpolation.empty())
+      md << "\n- " << (p.value.empty() ? "" : md_cell(p.value) + ": ") << "largest stable step "
+         << gnum(p.h_stable, 6) << " s: " << md_cell(p.interpolation, 200) << "\n";
   write_file_atomic(dir / "stability.md", md.str());
   info.files.push_back((dir / "stability.md").string());
 
@@ -130,6 +134,7 @@ struct Search {
   std::vector<double> bound;
   double t_first = 0.0;
   int bisections = 0;
+  bool warned_dense = false;  // said once: steps much longer than the output interval
 };
 
 // After the reference: the growth bound per channel (growth x the
@@ -285,11 +290,21 @@ StabilityResult stability(const Options& opt, const CaseInput& spec, const Stabi
     std::vector<TaskSpec> tasks;
     std::vector<int> todo, owner;
     for (std::size_t k = 0; k < searches.size(); ++k) {
-      const Search& q = searches[k];
+      Search& q = searches[k];
       if (q.phase == Search::Phase::done) continue;
       TaskSpec t;
       t.src = q.src;
       t.channels = s.channels;
+      if (q.phase != Search::Phase::reference && q.info.times.size() >= 2) {
+        const double dt = q.info.times[1] - q.info.times[0];
+        if (q.h > 10.0 * dt && !q.warned_dense) {
+          q.warned_dense = true;
+          say(opt, "evas study: " + q.tag + "warning: steps of " + gnum(q.h, 4) + " s span " +
+                       gnum(q.h / dt, 3) +
+                       " output intervals; stability is judged at the step points (the outputs "
+                       "between them are interpolated and may swing far beyond)");
+        }
+      }
       if (q.phase == Search::Phase::reference) {
         // --max-wall limits the trials, not the reference: a tight-tolerance
         // run is meant to take long
@@ -349,8 +364,10 @@ StabilityResult stability(const Options& opt, const CaseInput& spec, const Stabi
         continue;
       }
       const bool ok = d.status == CaseStatus::completed;
-      say(opt, "evas study: " + q.tag + "h = " + gnum(q.h, 6) +
-                   " s: " + (ok ? std::string("stable") : "unstable: " + d.message));
+      say(opt, "evas study: " + q.tag + "h = " + gnum(q.h, 6) + " s: " +
+                   (ok ? std::string("stable") + (d.message.empty() ? "" : "; " + d.message)
+                       : "unstable: " + d.message));
+      if (ok) p.interpolation = d.message;  // a stable trial's step is the largest so far
       advance(q, p, ok, d.message, so);
       if (q.phase == Search::Phase::done)
         say(opt,

@@ -157,6 +157,11 @@ struct StabilityPoint {
   double h_stable = std::numeric_limits<double>::quiet_NaN();    ///< largest stable step found
   double h_unstable = std::numeric_limits<double>::quiet_NaN();  ///< smallest unstable step found
   std::string message;  ///< why h_unstable is unstable (or the reference failure)
+  /// The largest stable step's interpolation excursion: with a step longer
+  /// than two output intervals stability is judged at the step points, and
+  /// the outputs between them may swing far beyond (empty when they did not
+  /// exceed the bound)
+  std::string interpolation;
   int runs = 0;
   double reference_max =
       std::numeric_limits<double>::quiet_NaN();  ///< largest |y_ref| (all channels)

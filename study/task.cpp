@@ -96,18 +96,45 @@ RunData run_task(const TaskSpec& task, const std::function<bool()>& stop) {
   if (task.limit.empty()) {
     d = run_case_repeated(task.src, task.settings, task.channels, task.repeats, ask);
   } else {
+    // A fixed step longer than two output intervals: the outputs between the
+    // step points are interpolated, and an interpolant over a long step of a
+    // stiff mode swings far beyond the solution at the step points (a bounded,
+    // decaying solution can show ten times its amplitude there). Stability is
+    // then judged at the step points: only the output row nearest each step
+    // point (within half an output interval) is held to the bound; the largest
+    // excursion elsewhere is reported beside the verdict.
+    const double h = takes_fixed_steps(task.settings) ? task.settings.step : 0.0;
     int row = 0;
+    double t0 = 0.0, dt = 0.0, excursion = 0.0;
+    std::string excursion_at;
     const RowCheck check = [&](double t, const double* y) {
-      if (row++ == 0 && t <= task.limit_after) return;
+      const int r = row++;
+      if (r == 0) t0 = t;
+      if (r == 1) dt = t - t0;
+      if (r == 0 && t <= task.limit_after) return;
+      bool at_step = true;
+      if (h > 2.0 * dt && dt > 0.0) {
+        const double k = std::round((t - t0) / h);
+        at_step = std::abs(t - t0 - k * h) <= 0.5 * dt * (1.0 + 1e-9);
+      }
       for (std::size_t c = 0; c < task.limit.size(); ++c) {
         const double b = task.limit[c];
-        if (b > 0 && std::abs(y[c]) > b)
+        if (!(b > 0)) continue;
+        if (!std::isfinite(y[c]) || (at_step && std::abs(y[c]) > b))
           throw RunError("|" + task.limit_names.at(c) + "| = " + sci(std::abs(y[c]), 3) + " > " +
                          gnum(task.growth, 4) + " x reference max " + sci(b / task.growth, 3) +
-                         " at t = " + gnum(t, 6) + " s");
+                         " at t = " + gnum(t, 6) + " s" + (h > 2.0 * dt ? " (a step point)" : ""));
+        const double ratio = std::abs(y[c]) * task.growth / b;  // x the reference max
+        if (!at_step && ratio > excursion) {
+          excursion = ratio;
+          excursion_at = task.limit_names.at(c) + " at t = " + gnum(t, 6) + " s";
+        }
       }
     };
     d = run_case(task.src, task.settings, task.channels, check, ask);
+    if (d.status == CaseStatus::completed && excursion > task.growth)
+      d.message = "between step points the interpolated outputs reach " + gnum(excursion, 3) +
+                  " x the reference max (" + excursion_at + "); judged at the step points";
   }
   if (timed_out && d.status == CaseStatus::failed)
     d.message = "timed out: wall time above --max-wall " + gnum(task.max_wall, 6) + " s (" +
