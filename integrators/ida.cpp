@@ -41,6 +41,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
+#include <limits>
 #include <memory>
 #include <string>
 
@@ -72,6 +74,7 @@ class IdaIntegrator final : public Integrator {
     s_ = s;
     n_ = p.size();
     total_ = IntegratorStats{};
+    largest_.clear();
     form_.reset();
     dae_.reset();
     penalty_.reset();
@@ -457,8 +460,18 @@ class IdaIntegrator final : public Integrator {
     so.set_coefficients(cj, -1.0, 1.0, cj, 1.0);
   }
 
-  // Error weights 1/(rtol |y_i| + atol), times h^p_i for the higher-index
-  // components (DaeForm::weight_power); h = 0 before the first step.
+  // Error weights 1/(rtol |y_i| + atol_i), times h^p_i for the higher-index
+  // components (DaeForm::weight_power); h = 0 before the first step. atol_i
+  // is atol, but never below what rounding lets the variable reach: 10 eps
+  // times the largest |y_i| the run has seen; for the h-scaled components
+  // (multipliers, GGL's mu, index-3's v), whose h^p y_i moves the positions,
+  // 1000 eps times the largest |q| seen, as the rounding of g(q) reaches them
+  // amplified by the constraints' conditioning. An atol below that asks the
+  // corrector and the error test to resolve rounding, which no step can:
+  // Andrews at atol 1e-14 stalled at steps of 5e-19 s on a velocity of |v|
+  // up to 1.4e3 (eps |v| = 3e-13), and GGL's mu failed every step. The factor
+  // 1000 is measured: of 100, 300, 1000 and 3000 the smallest with which
+  // GGL completes Andrews at rtol 1e-12, atol 1e-14 (docs/problems.md).
   static int weights_cb(N_Vector y, N_Vector w, void* user) {
     auto* self = static_cast<IdaIntegrator*>(user);
     double h = 0.0;
@@ -467,9 +480,23 @@ class IdaIntegrator final : public Integrator {
     const double* yv = N_VGetArrayPointer(y);
     double* wv = N_VGetArrayPointer(w);
     const std::vector<int>& power = self->dae_->weight_power();
+    std::vector<double>& seen = self->largest_;
+    if (seen.size() != power.size()) seen.assign(power.size(), 0.0);
+    double qmax = 0.0;  // the largest |q| seen
+    for (std::size_t i = 0; i < power.size(); ++i) {
+      seen[i] = std::max(seen[i], std::abs(yv[i]));
+      if (i < static_cast<std::size_t>(self->n_)) qmax = std::max(qmax, seen[i]);
+    }
+    constexpr double kRounding = 10.0 * std::numeric_limits<double>::epsilon();
+    constexpr double kAlgebraic = 1000.0 * std::numeric_limits<double>::epsilon();
     self->weights_base_.resize(power.size());
     for (std::size_t i = 0; i < power.size(); ++i) {
-      const double base = 1.0 / (self->s_.rtol * std::abs(yv[i]) + self->s_.atol);
+      const double atol =
+          std::max(self->s_.atol, power[i] == 0 ? kRounding * seen[i] : kAlgebraic * qmax);
+      // one rounding for rtol |y| + atol (std::fma) in every build: a build
+      // that contracts it to an FMA and one that does not gave weights a bit
+      // apart, and the pendulum's digits moved by 0.55 (docs/problems.md)
+      const double base = 1.0 / std::fma(self->s_.rtol, std::abs(yv[i]), atol);
       self->weights_base_[i] = base;
       wv[i] = power[i] == 0 ? base : base * std::pow(h, power[i]);
     }
@@ -504,7 +531,8 @@ class IdaIntegrator final : public Integrator {
   SUNNonlinearSolver nls_ = nullptr;  // constrained problems: IDA's Newton, its test wrapped
   SUNNonlinSolConvTestFn ida_ctest_ = nullptr;
   void* ida_ctest_data_ = nullptr;
-  std::vector<double> weights_base_;  // 1 / (rtol |y_i| + atol) at the last weights
+  std::vector<double> weights_base_;  // 1 / (rtol |y_i| + atol_i) at the last weights
+  std::vector<double> largest_;       // the largest |y_i| of this run (weights_cb)
   double weights_h_ = 0.0;            // the h the weights were made for
   int n_ = 0;
   double t_ = 0.0;         // last time handed back to the caller

@@ -163,22 +163,51 @@ TEST(Problems, IdaReachesTheReference) {
 // iteration IDA retries at h / 4 with the weights of the first try, and the
 // round-off of g in mu's correction grows as 1/h. Without the rescaling every
 // retry failed (IDA_CONV_FAIL at t = 0.0293 s, h = 2.4e-15 s). Measured with
-// it (x86-64-v3): 6.35 digits. (rtol 1e-11 completes in `evas problem`, 7.04
-// digits, but fails at t = 0.0215 s with this single output at the end:
-// docs/problems.md.)
+// it (x86-64-v3): 6.35 digits, 6.64 with the atol floors of the next test.
 TEST(Problems, GglCompletesAndrewsAtRtol1e10) {
   EXPECT_GE(solve("andrews", "ida", "ggl", 1e-10, 1e-12).s.mescd, 5.8);
 }
 
-// A failure at a tight tolerance names a variable the error test checks: GGL
-// at rtol 1e-12, atol 1e-14 (failing in its first steps, docs/problems.md)
-// used to name one of mu, which IDASetSuppressAlg leaves out of that test.
+// Every IDA formulation completes both test-set problems at the tightest
+// tolerance asked (rtol 1e-12, atol 1e-14). atol is floored at what rounding
+// lets each variable reach (10 eps |y_i|max; 1000 eps |q|max for the h-scaled
+// multipliers): before, GGL failed in its first steps and index-2 stalled at
+// steps of 5e-19 s on Andrews (docs/problems.md). Measured (x86-64-v3):
+// Andrews 7.27 / 7.27 / 6.92 / 4.57, car axis 8.39 / 8.32 / 7.73 / 5.25 digits
+// for GGL / index-2 / index-1 / index-3; the floors are index-3's.
+TEST(Problems, EveryFormulationCompletesAtRtol1e12) {
+  const double floor[2][4] = {{6.5, 6.5, 6.2, 3.8}, {7.6, 7.6, 7.0, 4.5}};
+  const char* forms[] = {"ggl", "index-2", "index-1", "index-3"};
+  const char* names[] = {"andrews", "car-axis"};
+  for (int p = 0; p < 2; ++p)
+    for (int f = 0; f < 4; ++f)
+      EXPECT_GE(solve(names[p], "ida", forms[f], 1e-12, 1e-14).s.mescd, floor[p][f])
+          << names[p] << " " << forms[f];
+}
+
+// A failure names a variable the error test checks: one made to fail by a step
+// limit of 50 (IDA's max_steps) at rtol 1e-12. The message used to name one
+// of mu, which IDASetSuppressAlg leaves out of that test.
 TEST(Problems, AFailureNamesAVariableInTheErrorTest) {
+  const LibraryProblem& lp = problems::library_problem("andrews");
+  auto p = lp.make();
+  IntegratorSettings s;
+  s.name = "ida";
+  s.formulation = "ggl";
+  s.rtol = 1e-12;
+  s.atol = 1e-14;
+  s.max_steps = 50;
+  auto integ = make_integrator("ida");
+  Vec q, v;
+  p->initial_state(q, v);
+  integ->init(*p, 0.0, q, v, s);
   try {
-    solve("andrews", "ida", "ggl", 1e-12, 1e-14);
+    integ->advance(lp.t_end, true, q, v);
+    FAIL() << "50 steps reached the end";
   } catch (const RunError& e) {
     const std::string msg = e.what();
     std::printf("[ message ] %s\n", msg.c_str());
+    EXPECT_NE(msg.find("largest local error"), std::string::npos) << msg;
     EXPECT_EQ(msg.find("algebraic variable"), std::string::npos) << msg;
     EXPECT_EQ(msg.find("(multipliers)"), std::string::npos) << msg;
   }
