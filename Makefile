@@ -30,6 +30,9 @@ demo: build
 	./validation/engine/run.sh $(BUILD) $(DEMO_OUT)/validation
 	./$(BUILD)/evas problem andrews --work-precision --out $(DEMO_OUT)/problems/andrews
 	./$(BUILD)/evas problem car-axis --work-precision --out $(DEMO_OUT)/problems/car-axis
+	./$(BUILD)/evas problem fekete --work-precision --out $(DEMO_OUT)/problems/fekete
+	./$(BUILD)/evas problem chemakzo --work-precision --out $(DEMO_OUT)/problems/chemakzo
+	./$(BUILD)/evas problem transamp --work-precision --out $(DEMO_OUT)/problems/transamp
 
 # The paper's validation: Case 1 (soft mounts) vs Case 2 (rigid ground), main-bearing
 # loads and their order spectra (docs/validation.md).

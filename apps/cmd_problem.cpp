@@ -41,7 +41,12 @@ void write_summary(const std::filesystem::path& dir, const problems::LibraryProb
     << ",\n  \"formulation\": " << json_string(s.formulation) << ",\n  \"rtol\": " << num(s.rtol)
     << ",\n  \"atol\": " << num(s.atol) << ",\n  \"t_end\": " << num(lp.t_end)
     << ",\n  \"status\": " << json_string(ok ? "completed" : "failed: " + run.failure);
-  if (ok) {
+  if (ok && lp.implicit()) {
+    f << ",\n  \"mescd\": " << num(run.score.mescd) << ",\n  \"scd\": " << num(run.score.scd)
+      << ",\n  \"y\": [";
+    for (int i = 0; i < run.y.size(); ++i) f << (i ? ", " : "") << num(run.y(i));
+    f << "]";
+  } else if (ok) {
     const int n = static_cast<int>(run.q.size());
     f << ",\n  \"mescd\": " << num(run.score.mescd) << ",\n  \"scd\": " << num(run.score.scd)
       << ",\n  \"mescd_lambda\": " << num(run.score.mescd_lambda) << ",\n  \"q\": [";
@@ -52,7 +57,7 @@ void write_summary(const std::filesystem::path& dir, const problems::LibraryProb
   }
   f << ",\n  \"wall_seconds\": " << num(run.wall) << ",\n  \"stats\": {\n"
     << stats_json_members(run.stats, "    ") << "\n  }";
-  if (ok) f << ",\n  \"max_constraint_end\": " << num(run.g_end);
+  if (ok && !lp.implicit()) f << ",\n  \"max_constraint_end\": " << num(run.g_end);
   f << "\n}\n";
   if (!f) throw InputError((dir / "summary.json").string() + ": writing failed");
   std::cout << "  summary: " << (dir / "summary.json").string() << "\n";
@@ -60,10 +65,12 @@ void write_summary(const std::filesystem::path& dir, const problems::LibraryProb
 
 void list_problems() {
   for (const auto& p : problems::library()) {
-    const auto P = p.make();
-    std::cout << std::left << std::setw(10) << p.name << " n = " << P->size()
-              << ", m = " << P->constraint_count() << ", t_end = " << p.t_end
-              << " s: " << p.description << "\n";
+    std::cout << std::left << std::setw(10) << p.name;
+    if (p.implicit())
+      std::cout << " M y' = f, n = " << p.make_implicit()->size();
+    else
+      std::cout << " n = " << p.make()->size() << ", m = " << p.make()->constraint_count();
+    std::cout << ", t_end = " << p.t_end << ": " << p.description << "\n";
   }
 }
 
@@ -93,8 +100,9 @@ int cmd_problem(const std::vector<std::string>& args) {
       "out", po::value<std::string>(),
       "folder for summary.json, written also when the run fails (and the sweep's files)")(
       "work-precision",
-      "sweep IDA in every formulation over rtol 1e-3..1e-10 and generalized-alpha over 8 "
-      "step halvings; writes OUT/work_precision.csv and .png");
+      "sweep IDA in every formulation and radau in index-3/2/1 over rtol 1e-3..1e-10 and "
+      "generalized-alpha over 8 step halvings (first-order problems: ida and radau over "
+      "1e-3..1e-12); writes OUT/work_precision.csv and .png");
   po::variables_map vm;
   if (parse_args(args, opts, {"name"}, vm)) return 0;
   if (vm.count("list")) {
@@ -132,24 +140,31 @@ int cmd_problem(const std::vector<std::string>& args) {
     if (vm.count("out")) write_summary(vm["out"].as<std::string>(), lp, s, run);
     return 2;
   }
-  const Vec &q = run.q, &v = run.v;
   const problems::Score& sc = run.score;
   const IntegratorStats& st = run.stats;
   const double wall = run.wall, gmax = run.g_end;
-  const auto problem = lp.make();
-  const int n = problem->size();
-  std::cout << "  end point t = " << lp.t_end << " s:\n"
+  std::cout << "  end point t = " << lp.t_end << ":\n"
             << "    component            value                  reference              "
                "mixed error\n";
   const double ratio = s.atol / s.rtol;
-  for (int i = 0; i < 2 * n; ++i) {
-    const double y = i < n ? q(i) : v(i - n), r = lp.reference_qv[static_cast<std::size_t>(i)];
-    const std::string label =
-        (i < n ? "q " : "v ") + problem->describe_coordinate(i < n ? i : i - n);
+  auto row = [&](const std::string& label, double y, double r, bool worst) {
     std::cout << "    " << std::left << std::setw(20) << label << std::right << std::setw(23)
               << std::setprecision(15) << y << std::setw(23) << r << std::setw(12)
               << std::setprecision(3) << std::abs(y - r) / (ratio + std::abs(r))
-              << (i == sc.worst ? "  <- worst" : "") << "\n";
+              << (worst ? "  <- worst" : "") << "\n";
+  };
+  if (lp.implicit()) {
+    const auto problem = lp.make_implicit();
+    for (int i = 0; i < run.y.size(); ++i)
+      row(problem->component_name(i), run.y(i), lp.reference_y[static_cast<std::size_t>(i)],
+          i == sc.worst);
+  } else {
+    const auto problem = lp.make();
+    const int n = problem->size();
+    for (int i = 0; i < 2 * n; ++i)
+      row((i < n ? "q " : "v ") + problem->describe_coordinate(i < n ? i : i - n),
+          i < n ? run.q(i) : run.v(i - n), lp.reference_qv[static_cast<std::size_t>(i)],
+          i == sc.worst);
   }
   std::cout << std::setprecision(4) << "  mescd " << std::fixed << std::setprecision(2) << sc.mescd
             << "  scd " << sc.scd;
@@ -158,7 +173,9 @@ int cmd_problem(const std::vector<std::string>& args) {
             << ", residuals " << st.residual_evals << ", Jacobians " << st.jacobian_evals
             << ", factorisations " << st.linear_setups << ", error-test failures "
             << st.error_test_failures << ", convergence failures " << st.convergence_failures
-            << ", wall " << wall << " s; at the end |g| " << gmax << "\n";
+            << ", wall " << wall << " s";
+  if (!lp.implicit()) std::cout << "; at the end |g| " << gmax;
+  std::cout << "\n";
   if (vm.count("out")) write_summary(vm["out"].as<std::string>(), lp, s, run);
   return 0;
 }

@@ -7,12 +7,64 @@
 #include <vector>
 
 #include "dae/constraint_stats.h"
+#include "dae/implicit_form.h"
+#include "integrators/implicit_ida.h"
+#include "integrators/implicit_radau.h"
 #include "run/run.h"
 #include "study/report.h"
 
 namespace evas::cli {
 
+namespace {
+
+ProblemRun run_implicit(const problems::LibraryProblem& lp, const IntegratorSettings& s) {
+  if (s.name != "ida" && s.name != "radau")
+    throw InputError("problem '" + lp.name +
+                     "' is a first-order implicit DAE (M y' = f): ida and radau run it; '" +
+                     s.name + "' takes the second-order form of the mechanical problems only");
+  if (s.formulation != "default")
+    throw InputError("problem '" + lp.name +
+                     "' has no formulations (it is M y' = f as "
+                     "published): leave --formulation out");
+  ProblemRun r;
+  auto problem = lp.make_implicit();
+  ImplicitRun run = s.name == "radau" ? integrate_implicit_radau(*problem, lp.t_end, s)
+                                      : integrate_implicit_ida(*problem, lp.t_end, s);
+  r.y = std::move(run.y);
+  r.wall = run.wall;
+  r.stats = run.stats;
+  r.failure = run.failure;
+  if (r.failure.empty()) r.score = problems::score_implicit(lp, r.y, s.rtol, s.atol);
+  return r;
+}
+
+// Radau IIA on a constrained mechanical problem: its first-order form
+// y = (q, v, a, lambda) (dae/implicit_form.h), index-3 by default.
+ProblemRun run_radau_first_order(const problems::LibraryProblem& lp, const IntegratorSettings& s) {
+  auto problem = lp.make();
+  const std::string form = s.formulation == "default" ? "index-3" : s.formulation;
+  dae::ImplicitForm f(*problem, form);
+  ImplicitRun run = integrate_implicit_radau(f, lp.t_end, s);
+  ProblemRun r;
+  const int n = f.n(), m = f.m();
+  r.q = run.y.head(n);
+  r.v = run.y.segment(n, n);
+  r.lambda = run.y.tail(m);
+  r.wall = run.wall;
+  r.stats = run.stats;
+  r.failure = run.failure;
+  if (!r.failure.empty()) return r;
+  r.score = problems::score(lp, r.q, r.v, r.lambda, s.rtol, s.atol);
+  double gv = 0.0;
+  dae::constraint_norms(*problem, lp.t_end, r.q, r.v, r.g_end, gv);
+  return r;
+}
+
+}  // namespace
+
 ProblemRun run_problem(const problems::LibraryProblem& lp, const IntegratorSettings& s) {
+  if (lp.implicit()) return run_implicit(lp, s);
+  if (s.name == "radau" && lp.make()->constraint_count() > 0) return run_radau_first_order(lp, s);
   ProblemRun r;
   auto problem = lp.make();
   run::EndState end = run::run_to_end(*problem, s, 0.0, lp.t_end);
@@ -47,17 +99,34 @@ void problem_work_precision(const problems::LibraryProblem& lp, const std::files
     else
       std::cout << " FAILED: " << r.run.failure.substr(0, 100) << "\n";
   };
-  std::cout << "evas problem " << lp.name << " --work-precision (atol = rtol / 100)\n";
-  for (const char* f : {"ggl", "index-2", "index-1", "index-3"})
-    for (int k = 3; k <= 10; ++k) {
+  std::cout << "evas problem " << lp.name << " --work-precision"
+            << (lp.implicit() ? "" : " (atol = rtol / 100)") << "\n";
+  // one family: an integrator in a formulation over rtol 1e-3 ... 1e-kmax
+  auto family = [&](const std::string& label, const std::string& integrator,
+                    const std::string& form, int kmax, double atol_share) {
+    for (int k = 3; k <= kmax; ++k) {
       IntegratorSettings s;
-      s.name = "ida";
-      s.formulation = f;
+      s.name = integrator;
+      s.formulation = form;
       s.rtol = std::pow(10.0, -k);
-      s.atol = s.rtol / 100.0;
-      add(std::string("ida ") + f, "rtol 1e-" + std::to_string(k), s);
+      s.atol = atol_share * s.rtol;
+      s.step = lp.t_end / 2000.0;
+      add(label, "rtol 1e-" + std::to_string(k), s);
     }
-  for (int k = 0; k < 8; ++k) {
+  };
+  if (lp.implicit()) {
+    // both mixes of the tolerances for IDA: the test set's runs take atol = rtol
+    family("ida atol=rtol", "ida", "default", 12, 1.0);
+    family("ida atol=rtol/100", "ida", "default", 12, 0.01);
+    family("radau atol=rtol", "radau", "default", 12, 1.0);
+  } else {
+    for (const char* f : {"ggl", "index-2", "index-1", "index-3"})
+      family(std::string("ida ") + f, "ida", f, 10, 0.01);
+    // Radau IIA on the first-order form in each of its formulations
+    for (const char* f : {"index-3", "index-2", "index-1"})
+      family(std::string("radau ") + f, "radau", f, 10, 0.01);
+  }
+  for (int k = 0; k < 8 && !lp.implicit(); ++k) {
     IntegratorSettings s;
     s.name = "generalized-alpha";
     s.formulation = "index-3";
@@ -95,9 +164,11 @@ void problem_work_precision(const problems::LibraryProblem& lp, const std::files
     << "set xlabel 'wall time [s]'\nset ylabel 'mescd (significant correct digits)'\n"
     << "set title '" << lp.name << ": work-precision of integrators and formulations'\n"
     << "plot ";
-  const char* fams[] = {"ida ggl", "ida index-2", "ida index-1", "ida index-3",
-                        "generalized-alpha index-3"};
-  for (int k = 0; k < 5; ++k)
+  std::vector<std::string> fams = {
+      "ida ggl",       "ida index-2",   "ida index-1",   "ida index-3",
+      "radau index-3", "radau index-2", "radau index-1", "generalized-alpha index-3"};
+  if (lp.implicit()) fams = {"ida atol=rtol", "ida atol=rtol/100", "radau atol=rtol"};
+  for (std::size_t k = 0; k < fams.size(); ++k)
     g << (k ? ", \\\n     " : "") << "'work_precision.csv' using (strcol(1) eq '" << fams[k]
       << "' && strcol(3) eq 'completed' ? $10 : 1/0):4 with linespoints title '" << fams[k] << "'";
   g << "\n";

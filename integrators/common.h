@@ -20,6 +20,13 @@ IntegratorEntry generalized_alpha_entry();
 IntegratorEntry linear_acceleration_entry();
 IntegratorEntry radau_entry();
 
+/// A number in six significant digits, for messages (t, h).
+inline std::string g6(double x) {
+  std::ostringstream os;
+  os << std::setprecision(6) << x;
+  return os.str();
+}
+
 /// Track the smallest and largest accepted step.
 inline void note_step(IntegratorStats& s, double h) {
   h = std::abs(h);

@@ -72,6 +72,8 @@ class Problem {
   // ---- DAE parts (defaults: M = I, no constraints) ----
   /// True when M(q) is not the identity.
   virtual bool has_mass() const { return false; }
+  /// True when M does not depend on t or q (the identity included).
+  virtual bool mass_constant() const { return !has_mass(); }
   /// M(q) on mass_pattern() (n x n, symmetric positive definite); only values written.
   virtual void mass(double t, const double* q, SpMat& M);
   virtual const SpMat& mass_pattern() const;

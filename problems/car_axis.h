@@ -31,6 +31,7 @@ class CarAxis : public Problem {
   const SpMat& jacobian_pattern() const override { return kpat_; }
   bool has_mass() const override { return true; }
   void mass(double t, const double* q, SpMat& M) override;
+  bool mass_constant() const override { return true; }
   const SpMat& mass_pattern() const override { return mpat_; }
   int constraint_count() const override { return 2; }
   void constraint(double t, const double* q, const double* v, double* g, double* gv,

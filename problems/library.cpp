@@ -4,9 +4,12 @@
 #include <cmath>
 #include <limits>
 
+#include "problems/akzo.h"
 #include "problems/andrews.h"
 #include "problems/car_axis.h"
+#include "problems/fekete.h"
 #include "problems/pendulum.h"
+#include "problems/transistor.h"
 
 namespace evas::problems {
 
@@ -65,6 +68,96 @@ std::vector<LibraryProblem> build() {
     p.make = [] { return std::make_unique<Pendulum>(2.0, 1.0, 9.81, 1.0); };
     v.push_back(std::move(p));
   }
+  {
+    LibraryProblem p;
+    p.name = "fekete";
+    p.description =
+        "Fekete's problem: 20 points on the unit sphere, 60 positions, 20 constraints, "
+        "index 3 (the test set's GGL form is evas's ggl), t in [0, 1000] (IVP Test Set)";
+    p.t_end = 1000.0;
+    // IVP Test Set, problem fekete, RADAU5 at rtol = atol = 1e-12: p, then p'
+    p.reference_qv = {-0.4070263380333202e+00, 0.3463758772791802e+00,  0.8451942450030429e+00,
+                      0.7752934752521549e-01,  -0.2628662719972299e+00, 0.9617122871829146e+00,
+                      0.7100577833343567e+00,  0.1212948055586120e+00,  0.6936177005172217e+00,
+                      0.2348267744557627e+00,  0.7449277976923311e+00,  0.6244509285956391e+00,
+                      -0.4341114738782885e+00, 0.8785430442262876e+00,  0.1992720444237660e+00,
+                      -0.9515059600312596e+00, 0.2203508762787005e+00,  0.2146669498274008e+00,
+                      -0.6385191643609878e+00, -0.4310833259390688e+00, 0.6375425027722121e+00,
+                      -0.1464175087914336e+00, -0.9380871635228862e+00, 0.3139337298744690e+00,
+                      0.5666974065069942e+00,  -0.6739221885076542e+00, 0.4740073135462156e+00,
+                      0.9843259538440293e+00,  -0.1696995357819996e+00, -0.4800504290609090e-01,
+                      0.1464175087914331e+00,  0.9380871635228875e+00,  -0.3139337298744656e+00,
+                      -0.7092757549979014e+00, 0.5264062637139616e+00,  -0.4688542938854929e+00,
+                      -0.8665731819284478e+00, -0.4813878059756024e+00, -0.1315929352982178e+00,
+                      -0.2347897778700538e+00, -0.8594340408013130e+00, -0.4541441287957579e+00,
+                      0.5530976940074118e+00,  -0.7674370265615124e+00, -0.3242273140037833e+00,
+                      0.7711050969896927e+00,  0.6357041816577034e+00,  0.3573685519777001e-01,
+                      0.7103951209379591e+00,  0.2403570431280519e+00,  -0.6614886725910596e+00,
+                      -0.3038208738735660e-01, 0.4501923293640461e+00,  -0.8924145871442046e+00,
+                      -0.5772996158107093e+00, -0.1766763414971813e+00, -0.7971892020969544e+00,
+                      0.2414481766969039e+00,  -0.3416456818373135e+00, -0.9082846503446250e+00,
+                      0.2409619682166627e-15,  -0.1139818460497816e-15, 0.1627536276556335e-15,
+                      0.1745651819597609e-15,  -0.1914278710633076e-15, -0.6639600671806291e-16,
+                      0.1708576733899083e-15,  -0.2277602521390053e-15, -0.1350782790950654e-15,
+                      0.2411941341109454e-15,  -0.1438238671800488e-15, 0.8087033550666644e-16,
+                      0.1618239105233347e-15,  0.1837556152070701e-16,  0.2715177369929503e-15,
+                      0.7930078658689191e-16,  0.7482020588342764e-16,  0.2746974939098084e-15,
+                      0.8849338913035911e-16,  -0.5940734725324115e-16, 0.4845984056889910e-16,
+                      -0.3728835248155620e-16, -0.4600332954062859e-16, -0.1548568884846698e-15,
+                      0.2507541692375411e-16,  -0.1560155223230823e-15, -0.2517946296860555e-15,
+                      -0.3739779361502470e-16, -0.1381663620885020e-15, -0.2784051540342329e-15,
+                      0.6624397102887671e-16,  0.4226207488883120e-16,  0.1571821772296610e-15,
+                      -0.4112243677286995e-16, 0.1939960344265876e-15,  0.2800184977692136e-15,
+                      -0.9189023375328813e-16, 0.1392943179389155e-15,  0.9556003995587458e-16,
+                      -0.2234188557495892e-15, 0.1276804778190781e-15,  -0.1261196211463950e-15,
+                      -0.1887754149742397e-15, -0.2140788698695373e-16, -0.2713591291421657e-15,
+                      0.1107887633060814e-15,  -0.1318443715631340e-15, -0.4521275683078691e-16,
+                      -0.1277688851278605e-15, 0.4850914012115388e-16,  -0.1195891666741192e-15,
+                      -0.1569641653843750e-15, 0.1856239009452638e-15,  0.9898466095646496e-16,
+                      -0.2068030800303723e-15, 0.2451470336752085e-15,  0.9542986459336358e-16,
+                      -0.2456074075580993e-15, 0.1532475480661800e-15,  -0.1229326332276474e-15};
+    // the test set's lambda with evas's sign (+ G^T lambda on the left)
+    p.reference_lambda = {0.4750000000000000e+01, 0.4750000000000001e+01, 0.4750000000000000e+01,
+                          0.4750000000000000e+01, 0.4750000000000000e+01, 0.4750000000000000e+01,
+                          0.4750000000000000e+01, 0.4750000000000000e+01, 0.4750000000000000e+01,
+                          0.4750000000000000e+01, 0.4750000000000001e+01, 0.4750000000000001e+01,
+                          0.4750000000000000e+01, 0.4750000000000000e+01, 0.4750000000000000e+01,
+                          0.4750000000000000e+01, 0.4749999999999999e+01, 0.4750000000000000e+01,
+                          0.4750000000000000e+01, 0.4750000000000000e+01};
+    p.source =
+        "IVP Test Set (Mazzia & Magherini, Bari), problem fekete, RADAU5 rtol = atol = 1e-12";
+    p.make = [] { return std::make_unique<Fekete>(); };
+    v.push_back(std::move(p));
+  }
+  {
+    LibraryProblem p;
+    p.name = "chemakzo";
+    p.description =
+        "chemical Akzo Nobel problem: 6 concentrations, M y' = f with one algebraic "
+        "equation, index 1, t in [0, 180] (IVP Test Set)";
+    p.t_end = 180.0;
+    p.reference_y = {0.1150794920661702,    0.1203831471567715e-2, 0.1611562887407974,
+                     0.3656156421249283e-3, 0.1708010885264404e-1, 0.4873531310307455e-2};
+    p.source = "IVP Test Set (Mazzia & Magherini, Bari), problem chemakzo, its reference solution";
+    p.make_implicit = [] { return std::make_unique<Akzo>(); };
+    v.push_back(std::move(p));
+  }
+  {
+    LibraryProblem p;
+    p.name = "transamp";
+    p.description =
+        "transistor amplifier: 8 node voltages, M y' = f with a singular M (rank 5), index 1, "
+        "stiff, t in [0, 0.2] (IVP Test Set; Hairer, Lubich & Roche 1989)";
+    p.t_end = 0.2;
+    p.reference_y = {-0.5562145012262709e-2, 0.3006522471903042e+1, 0.2849958788608128e+1,
+                     0.2926422536206241e+1,  0.2704617865010554e+1, 0.2761837778393145e+1,
+                     0.4770927631616772e+1,  0.1236995868091548e+1};
+    p.source =
+        "IVP Test Set (Mazzia & Magherini, Bari), problem transamp, PSIDE at rtol = atol "
+        "= 1e-14";
+    p.make_implicit = [] { return std::make_unique<Transistor>(); };
+    v.push_back(std::move(p));
+  }
   return v;
 }
 
@@ -88,24 +181,40 @@ const LibraryProblem& library_problem(const std::string& name) {
   throw InputError("no problem named '" + name + "' (known: " + names + ")");
 }
 
-Score score(const LibraryProblem& p, const Vec& q, const Vec& v, const Vec& lambda, double rtol,
-            double atol) {
-  const double ratio = atol / rtol;
-  const int n = static_cast<int>(q.size());
+namespace {
+
+// mescd and scd of y against ref over their common components
+Score score_values(const std::vector<double>& ref, const Vec& y, double ratio) {
   Score s;
   double mixed = 0.0, rel = 0.0, big = 0.0;
-  for (double r : p.reference_qv) big = std::max(big, std::abs(r));
-  for (int i = 0; i < 2 * n && i < static_cast<int>(p.reference_qv.size()); ++i) {
-    const double y = i < n ? q(i) : v(i - n), r = p.reference_qv[static_cast<std::size_t>(i)];
-    const double em = std::abs(y - r) / (ratio + std::abs(r));
-    if (!(em <= mixed)) s.worst = i;  // NaN counts as the worst
+  for (double r : ref) big = std::max(big, std::abs(r));
+  const auto n = std::min(ref.size(), static_cast<std::size_t>(y.size()));
+  for (std::size_t i = 0; i < n; ++i) {
+    const double yi = y(static_cast<Eigen::Index>(i)), r = ref[i];
+    const double em = std::abs(yi - r) / (ratio + std::abs(r));
+    if (!(em <= mixed)) s.worst = static_cast<int>(i);  // NaN counts as the worst
     mixed = std::isnan(em) ? std::numeric_limits<double>::infinity() : std::max(mixed, em);
     // relative digits only where the reference is not (nearly) zero
-    if (std::abs(r) > 1e-6 * big) rel = std::max(rel, std::abs(y - r) / std::abs(r));
+    if (std::abs(r) > 1e-6 * big) rel = std::max(rel, std::abs(yi - r) / std::abs(r));
   }
   s.mescd = digits(mixed);
   s.scd = digits(rel);
   s.mescd_lambda = std::numeric_limits<double>::quiet_NaN();
+  return s;
+}
+
+}  // namespace
+
+Score score_implicit(const LibraryProblem& p, const Vec& y, double rtol, double atol) {
+  return score_values(p.reference_y, y, atol / rtol);
+}
+
+Score score(const LibraryProblem& p, const Vec& q, const Vec& v, const Vec& lambda, double rtol,
+            double atol) {
+  const double ratio = atol / rtol;
+  Vec qv(q.size() + v.size());
+  qv << q, v;
+  Score s = score_values(p.reference_qv, qv, ratio);
   if (!p.reference_lambda.empty() &&
       lambda.size() == static_cast<Eigen::Index>(p.reference_lambda.size())) {
     double ml = 0.0;

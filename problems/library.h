@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "model/implicit_dae.h"
 #include "model/problem.h"
 
 namespace evas::problems {
@@ -27,6 +28,12 @@ struct LibraryProblem {
   std::vector<double> reference_qv, reference_lambda;
   std::string source;  ///< where the reference comes from
   std::function<std::unique_ptr<Problem>()> make;
+  /// A first-order implicit problem M y' = f(t, y) (model/implicit_dae.h) is
+  /// made here instead of by `make`, and its reference at t_end (every
+  /// component of y) is in reference_y.
+  std::function<std::unique_ptr<ImplicitDae>()> make_implicit;
+  std::vector<double> reference_y;
+  bool implicit() const { return bool(make_implicit); }
 };
 
 /// All problems of the library, in a fixed order.
@@ -39,6 +46,10 @@ struct Score {
   double mescd_lambda = 0.0;      ///< over the multipliers (NaN without a reference)
   int worst = -1;                 ///< the component that sets mescd
 };
+
+/// Scores the end point y of a first-order implicit problem over all its
+/// components (as the test set scores them; mescd_lambda is NaN).
+Score score_implicit(const LibraryProblem& p, const Vec& y, double rtol, double atol);
 
 /// Scores the end point (q, v, lambda) against the reference with the ratio
 /// atol/rtol of the test set's formula.

@@ -38,6 +38,7 @@ class Pendulum : public Problem {
   const SpMat& jacobian_pattern() const override { return diag_; }
   bool has_mass() const override { return m_ != 1.0; }
   void mass(double t, const double* q, SpMat& M) override;
+  bool mass_constant() const override { return true; }
   const SpMat& mass_pattern() const override { return diag_; }
   int constraint_count() const override { return 1; }
   void constraint(double t, const double* q, const double* v, double* g, double* gv,
