@@ -31,6 +31,7 @@ demo: build
 	./$(BUILD)/evas problem andrews --work-precision --out $(DEMO_OUT)/problems/andrews
 	./$(BUILD)/evas problem car-axis --work-precision --out $(DEMO_OUT)/problems/car-axis
 	./$(BUILD)/evas problem fekete --work-precision --out $(DEMO_OUT)/problems/fekete
+	./$(BUILD)/evas problem crank --work-precision --out $(DEMO_OUT)/problems/crank
 	./$(BUILD)/evas problem chemakzo --work-precision --out $(DEMO_OUT)/problems/chemakzo
 	./$(BUILD)/evas problem transamp --work-precision --out $(DEMO_OUT)/problems/transamp
 

@@ -9,6 +9,7 @@
 #include "problems/car_axis.h"
 #include "problems/fekete.h"
 #include "problems/pendulum.h"
+#include "problems/slider_crank.h"
 #include "problems/transistor.h"
 
 namespace evas::problems {
@@ -127,6 +128,27 @@ std::vector<LibraryProblem> build() {
     p.source =
         "IVP Test Set (Mazzia & Magherini, Bari), problem fekete, RADAU5 rtol = atol = 1e-12";
     p.make = [] { return std::make_unique<Fekete>(); };
+    v.push_back(std::move(p));
+  }
+  {
+    LibraryProblem p;
+    p.name = "crank";
+    p.description =
+        "flexible slider crank: crank, elastic rod (4 coordinates), slider; 7 coordinates, 3 "
+        "constraints, index 3 (the test set's index-2 form is evas's index-2), M(p), "
+        "t in [0, 0.1] (IVP Test Set; Simeon 1996)";
+    p.t_end = 0.1;
+    // IVP Test Set, problem crank, MEBDFI at rtol = atol = 1e-14: p, then p'
+    p.reference_qv = {0.1500000000000104e+2,  -0.3311734988256260,    0.1697373328427860,
+                      0.1893192899613509e-3,  0.2375751249879174e-4,  -0.5323896770569702e-5,
+                      -0.8363313279112129e-5, 0.1500000000000000e+3,  0.6025346755138369e+2,
+                      -0.8753116326670527e+1, -0.3005541400289738e-1, -0.5500431812571696e-2,
+                      0.4974111734266989e-3,  0.1105560003626645e-2};
+    p.reference_lambda = {-0.6232935833287916e+2, -0.1637920993367306e+3, 0.2529857947066878e+2};
+    p.source =
+        "IVP Test Set (Mazzia & Magherini, Bari), problem crank, MEBDFI at rtol = atol = "
+        "1e-14";
+    p.make = [] { return std::make_unique<SliderCrank>(); };
     v.push_back(std::move(p));
   }
   {
