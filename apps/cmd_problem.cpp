@@ -90,7 +90,8 @@ int cmd_problem(const std::vector<std::string>& args) {
       "integrator", po::value<std::string>()->default_value("ida"),
       (builtin_integrator_list() + " or a loaded plug-in").c_str())(
       "formulation", po::value<std::string>()->default_value("default"),
-      "index-3, index-2, ggl, index-1, penalty or default (the integrator's)")(
+      "index-3, index-2, ggl, index-1, penalty or default (the integrator's: ida ggl; radau "
+      "index-3, on the first-order form (q, v, a, lambda), which takes index-3/2/1 only)")(
       "rtol", po::value<std::string>()->default_value("1e-8"), "relative tolerance")(
       "atol", po::value<std::string>(), "absolute tolerance (default rtol / 100)")(
       "step", po::value<std::string>(),
