@@ -347,7 +347,8 @@ TEST(Problems, IdaOnTheFirstOrderProblems) {
 // and every shorter step after it fails the error test on them). Floors below
 // the digits measured (2026-11-28, x86-64-v3 without FMA contraction), rtol
 // 1e-4, 1e-8, 1e-10, 1e-12:
-//   andrews  index-3 -0.39 2.71 4.31 4.96, index-2 2.19 5.59 7.02 7.30,
+//   andrews  index-3 -0.39 2.71 4.31 4.96 (4.31: 3.79 in the clang sanitizer
+//            build, Eigen's vector width), index-2 2.19 5.59 7.02 7.30,
 //            index-1 3.53 7.41 7.32 7.30;
 //   car-axis index-3 1.54 (atol = rtol) 4.46 6.17 8.32, index-2 2.74 5.95
 //            7.61 9.26, index-1 2.83 6.08 7.75 9.41.
@@ -357,7 +358,7 @@ TEST(Problems, IdaOnTheFirstOrderProblems) {
 TEST(Problems, RadauSolvesEveryIndex) {
   const double rtols[] = {1e-4, 1e-8, 1e-10, 1e-12};
   const double floor[2][3][4] = {
-      {{-0.8, 2.3, 3.8, 4.5}, {1.7, 5.1, 6.5, 6.8}, {3.1, 6.8, 6.8, 6.8}},
+      {{-0.8, 2.3, 3.5, 4.5}, {1.7, 5.1, 6.5, 6.8}, {3.1, 6.8, 6.8, 6.8}},
       {{1.0, 4.0, 5.7, 5.6}, {2.2, 5.5, 7.1, 8.8}, {2.3, 5.6, 7.3, 8.9}}};
   const char* names[] = {"andrews", "car-axis"};
   const char* forms[] = {"index-3", "index-2", "index-1"};
