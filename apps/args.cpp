@@ -5,6 +5,25 @@
 
 namespace evas::cli {
 
+int parse_elastic_option(const std::string& value) {
+  if (value == "all") return 0;
+  std::size_t used = 0;
+  long n = -1;
+  try {
+    n = std::stol(value, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used != value.size() || used == 0 || n < 0)
+    throw InputError("--elastic '" + value + "': give 'all' or a number of elastic modes >= 1");
+  if (n == 0)
+    throw InputError(
+        "--elastic 0: give --elastic all to keep every elastic mode, or N >= 1 for the lowest "
+        "N; a body without elastic modes is made in the scene (modes: {elastic: 0} keeps none)");
+  if (n > 1000000) throw InputError("--elastic " + value + ": more modes than any body has");
+  return static_cast<int>(n);
+}
+
 bool parse_args(const std::vector<std::string>& args, const po::options_description& opts,
                 const std::vector<std::string>& positional, po::variables_map& vm) {
   po::options_description hidden;

@@ -33,10 +33,10 @@ int cmd_body(const std::vector<std::string>& args) {
       "density", po::value<double>(&spec.density)->default_value(spec.density),
       "bar density [kg/m^3]")("origin", po::value<std::vector<double>>()->multitoken(),
                               "centre of the first section: X Y Z [m]")(
-      "elastic", po::value<int>(&opt.num_elastic)->default_value(opt.num_elastic),
-      "elastic modes to keep (0 = all)")("max-frequency",
-                                         po::value<double>(&opt.max_frequency)->default_value(0.0),
-                                         "keep elastic modes below this [Hz] (0 = no cut-off)")(
+      "elastic", po::value<std::string>()->default_value(std::to_string(opt.num_elastic)),
+      "elastic modes to keep: N >= 1 (the lowest N) or all")(
+      "max-frequency", po::value<double>(&opt.max_frequency)->default_value(0.0),
+      "keep elastic modes below this [Hz] (0 = no cut-off)")(
       "damping-ratio", po::value<double>(&opt.damping_ratio)->default_value(0.0),
       "modal damping ratio of the elastic modes")("no-rigid", "leave out the 6 rigid modes");
   po::variables_map vm;
@@ -51,14 +51,14 @@ int cmd_body(const std::vector<std::string>& args) {
     origin = vm["origin"].as<std::vector<double>>();
     if (origin.size() != 3) throw InputError("--origin needs 3 values");
   }
-  if (opt.num_elastic < 0) throw InputError("--elastic must be >= 0");
+  opt.num_elastic = parse_elastic_option(vm["elastic"].as<std::string>());
   const long nodes = 4L * (std::max(spec.segments, 1) + 1), dof = 3 * nodes;
   if ((spec.segments >= 1 && opt.num_elastic > dof - 6) || opt.num_elastic > kMaxGeneratedModes)
     throw InputError("--elastic " + std::to_string(opt.num_elastic) + ": the truss has " +
                      std::to_string(dof - 6) + " elastic modes, and at most " +
                      std::to_string(kMaxGeneratedModes) + " are kept");
   if (spec.segments >= 1 && opt.num_elastic == 0 && dof > kMaxDenseDof)
-    throw InputError("--elastic 0 (all modes) needs the dense eigen-solver, limited to " +
+    throw InputError("--elastic all needs the dense eigen-solver, limited to " +
                      std::to_string(kMaxDenseDof) + " DOF; the truss has " + std::to_string(dof) +
                      ": give --elastic K");
   if (opt.damping_ratio < 0.0) throw InputError("--damping-ratio must be >= 0");

@@ -8,9 +8,11 @@
 #include "apps/commands.h"
 #include "bodies/body_builder.h"
 #include "bodies/reduce_body.h"
+#include "elements/plausibility.h"
 #include "io/body_file.h"
 #include "io/calculix.h"
 #include "io/fe_pipeline.h"
+#include "model/body_properties.h"
 
 namespace evas::cli {
 
@@ -115,10 +117,10 @@ int modal_import(const std::vector<std::string>& args) {
       "name", po::value<std::string>()->default_value("body"), "body name")(
       "units", po::value<std::string>()->default_value("mm-t-s"),
       "unit system of the files: mm-t-s, SI, mm-kg-s")(
-      "elastic", po::value<int>(&opt.num_elastic)->default_value(opt.num_elastic),
-      "elastic modes to keep (0 = all)")("max-frequency",
-                                         po::value<double>(&opt.max_frequency)->default_value(0.0),
-                                         "keep elastic modes below this [Hz] (0 = no cut-off)")(
+      "elastic", po::value<std::string>()->default_value(std::to_string(opt.num_elastic)),
+      "elastic modes to keep: N >= 1 (the lowest N) or all")(
+      "max-frequency", po::value<double>(&opt.max_frequency)->default_value(0.0),
+      "keep elastic modes below this [Hz] (0 = no cut-off)")(
       "damping-ratio", po::value<double>(&opt.damping_ratio)->default_value(0.0),
       "modal damping ratio of the elastic modes")(
       "solver", po::value<std::string>(&opt.solver)->default_value("auto"),
@@ -138,8 +140,9 @@ int modal_import(const std::vector<std::string>& args) {
         "evas modal import needs either --sti (evas modes) or --frd and --dat "
         "(ccx modes)");
   if (from_frd && !vm.count("dat")) throw InputError("evas modal import: --frd needs --dat");
-  if (opt.num_elastic < 0 || opt.damping_ratio < 0.0 || opt.max_frequency < 0.0)
-    throw InputError("--elastic, --max-frequency and --damping-ratio must be >= 0");
+  opt.num_elastic = parse_elastic_option(vm["elastic"].as<std::string>());
+  if (opt.damping_ratio < 0.0 || opt.max_frequency < 0.0)
+    throw InputError("--max-frequency and --damping-ratio must be >= 0");
   opt.keep_rigid = !vm.count("no-rigid");
   const UnitSystem units = unit_system(vm["units"].as<std::string>());
   const auto str = [&](const char* k) { return vm[k].as<std::string>(); };
@@ -152,6 +155,14 @@ int modal_import(const std::vector<std::string>& args) {
                                   : build_modal_body(name, fe, opt);
   write_body_file(str("out"), body);
   print_body(str("out"), body);
+  // a mesh in millimetres read as SI (or the reverse): said, not silently kept
+  const MassProperties mp = body_mass_properties(body);
+  const Vec3 extent = (body.s.colwise().maxCoeff() - body.s.colwise().minCoeff()).transpose();
+  const std::vector<MeshUnits> systems = {
+      {"SI", 1.0, 1.0}, {"mm-t-s", 1e-3, 1e3}, {"mm-kg-s", 1e-3, 1.0}};
+  const std::string w = mesh_units_warning(
+      mp.mass, extent, {vm["units"].as<std::string>(), units.length, units.mass}, systems);
+  if (!w.empty()) std::cerr << "evas modal import: warning: " << w << "\n";
   return 0;
 }
 

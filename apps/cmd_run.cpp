@@ -6,11 +6,11 @@
 #include <iostream>
 
 #include "apps/commands.h"
-#include "apps/step_advice.h"
 #include "integrators/integrator.h"
 #include "integrators/settings.h"
 #include "io/scene.h"
 #include "run/folder_run.h"
+#include "run/step_advice.h"
 #include "study/scene_edit.h"
 
 namespace evas::cli {
@@ -74,7 +74,9 @@ int cmd_run(const std::vector<std::string>& args) {
       "(e.g. crank.lof.speed=418.879); the results file keeps the changed scene")(
       "t-end", po::value<double>(), "end time [s] (overrides the scene)")(
       "out", po::value<std::string>(), "output directory (default out/<scene name>)")(
-      "csv", "also write DIR/results.csv")(
+      "overwrite",
+      "replace the results of an earlier run in the output directory (without it such a "
+      "directory is refused, exit 1)")("csv", "also write DIR/results.csv")(
       "max-wall", po::value<double>(),
       "wall-time limit [s]: the run stops with status 'failed: wall-time limit ...' "
       "(exit 2, rows kept) when it runs longer")("quiet,q", "no progress line");
@@ -129,7 +131,11 @@ int cmd_run(const std::vector<std::string>& args) {
   fo.csv = vm.count("csv") > 0;
   fo.max_wall = max_wall;
   fo.quiet = quiet;
+  fo.overwrite = vm.count("overwrite") > 0;
+  for (const std::string& w : scene.warnings) std::cerr << "evas run: warning: " << w << "\n";
   if (const std::string w = coarse_step_warning(*scene.model, set); !w.empty())
+    std::cerr << "evas run: warning: " << w << "\n";
+  if (const std::string w = step_count_warning(set, scene.t_start, scene.t_end); !w.empty())
     std::cerr << "evas run: warning: " << w << "\n";
   const run::FolderResult r = run::run_into_folder(scene, scene.t_end, set, fo);
   const IntegratorStats& stats = r.outcome.stats;

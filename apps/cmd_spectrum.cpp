@@ -17,7 +17,8 @@ int cmd_spectrum(const std::vector<std::string>& args) {
   po::options_description opts(
       "usage: evas spectrum RESULTS.h5 --channel NAME [--cycles N] [--csv FILE]\n\n"
       "Order spectrum of one output channel over whole engine cycles taken from the end\n"
-      "of the record (after the transient). The run must use the crank-angle output grid\n"
+      "of the record: by default every whole cycle, the start-up transient included; give\n"
+      "--cycles N for the last N only. The run must use the crank-angle output grid\n"
       "(its results carry the channel crank_angle). Orders are harmonics of the crank\n"
       "rotation in steps of 360/cycle (0.5 for a four-stroke cycle).\n\n"
       "options");

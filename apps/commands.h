@@ -22,6 +22,12 @@ namespace po = boost::program_options;
 bool parse_args(const std::vector<std::string>& args, const po::options_description& opts,
                 const std::vector<std::string>& positional, po::variables_map& vm);
 
+/// The elastic modes kept, from `--elastic all|N` of `evas body` and `evas
+/// modal import`: "all" gives 0 (BuildOptions::num_elastic: every mode), N >= 1
+/// gives N. "0" is refused: the scene's `modes: {elastic: 0}` keeps none, and
+/// the command line must not read the same words the opposite way.
+int parse_elastic_option(const std::string& value);
+
 /// Warns on stderr ("evas COMMAND: warning: ...") of each integrator setting
 /// given on the command line (--rtol, --atol, --step, and each --set
 /// KEY=VALUE) that the run's method `s` does not read

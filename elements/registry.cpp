@@ -8,6 +8,7 @@
 #include "elements/journal_bearing.h"
 #include "elements/motor.h"
 #include "elements/piston_conrod.h"
+#include "elements/plausibility.h"
 #include "elements/spring_damper.h"
 #include "elements/thrust_bearing.h"
 
@@ -165,7 +166,8 @@ std::string element_reference_markdown() {
        << (t.num_markers > 0 ? std::to_string(t.num_markers) : std::string("two or more"))
        << " markers)\n\n"
        << t.doc << "\n\n";
-    os << "| parameter | kind | unit | default | range | meaning |\n|---|---|---|---|---|---|\n";
+    os << "| parameter | kind | unit | default | range | plausible | meaning |\n"
+          "|---|---|---|---|---|---|---|\n";
     for (const auto& p : t.params) {
       std::ostringstream def;
       if (p.required) {
@@ -193,8 +195,10 @@ std::string element_reference_markdown() {
         range << " .. ";
         bound(p.max, "inf");
       }
+      const PlausibleRange* pr = plausible_range(t.type, p.key);
       os << "| `" << p.key << "` | " << kind_name(p.kind) << " | " << p.unit << " | " << def.str()
-         << " | " << range.str() << " | " << p.doc << " |\n";
+         << " | " << range.str() << " | " << (pr ? plausible_text(*pr) : "") << " | " << p.doc
+         << " |\n";
     }
     os << "\n";
   }

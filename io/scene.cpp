@@ -108,6 +108,7 @@ Scene SceneReader::read(const Node& root) {
     scene.output.step = (scene.t_end - scene.t_start) / 1000.0;
     scene.output.start = scene.t_start;
   }
+  scene.warnings = std::move(warnings_);
   return scene;
 }
 

@@ -42,6 +42,9 @@ struct Scene {
   IntegratorSettings integrator;
   double t_start = 0.0, t_end = 0.0;
   OutputSpec output;
+  /// Plausibility warnings (elements/plausibility.h), in file order, each
+  /// naming the file, line and item: values that are likely unit slips.
+  std::vector<std::string> warnings;
 };
 
 /// Reads a scene file; body files are resolved relative to its directory.

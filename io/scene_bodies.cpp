@@ -8,6 +8,7 @@
 #include "bodies/body_builder.h"
 #include "bodies/modal_contract.h"
 #include "bodies/truss.h"
+#include "elements/plausibility.h"
 #include "io/body_cache.h"
 #include "io/body_file.h"
 #include "io/scene_reader.h"
@@ -230,6 +231,15 @@ Lof SceneReader::read_lof(const Node& l, const std::string& item) const {
           speeds.push_back(tw[1]);
         }
       }
+      // a speed in rpm typed for rad/s: warned once per LOF (elements/plausibility.h)
+      for (double w : speeds)
+        if (std::string warn = plausibility_warning(*plausible_range("lof", "speed"), w);
+            !warn.empty()) {
+          const Node at = speed ? speed : profile;
+          warnings_.push_back(file_ + ":" + std::to_string(at.Mark().line + 1) + ": " + item +
+                              ": " + warn);
+          break;
+        }
       const double angle = l["angle"] ? number(l["angle"], item, "angle") : 0.0;
       Lof lof = Lof::spin(origin, R, axis, angle, times, speeds);
       lof.set_origin_motion(vec3_or(l, "velocity", item, Vec3::Zero()),

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <filesystem>
 
+#include "elements/plausibility.h"
 #include "elements/registry.h"
 #include "io/scene_reader.h"
 
@@ -23,9 +24,9 @@ std::string speed_text(const SpeedProfile& s) {
 // motor's clutch), or else the one body with a spin LOF. An element that
 // prescribes a crank speed and gives none follows that body's profile; one
 // that gives its own must agree with it.
-void SceneReader::connect_crank_speed(Element& el, const Node& e, const std::string& item,
-                                      const Model& model) {
-  if (!el.wants_speed() && !el.own_speed()) return;
+const SpeedProfile* SceneReader::connect_crank_speed(Element& el, const Node& e,
+                                                     const std::string& item, const Model& model) {
+  if (!el.wants_speed() && !el.own_speed()) return nullptr;
   std::vector<const Body*> spins;
   for (const auto& b : model.bodies())
     if (b.lof.kind() == LofKind::Spin) spins.push_back(&b);
@@ -47,15 +48,41 @@ void SceneReader::connect_crank_speed(Element& el, const Node& e, const std::str
                                join(names) + "): give the element's 'speed'");
     }
     el.follow_speed(crank->lof.speed_profile());
-    return;
+    return &crank->lof.speed_profile();
   }
-  if (!crank) return;
+  if (!crank) return el.own_speed();
   const SpeedProfile& w = crank->lof.speed_profile();
   if (!el.own_speed()->same_as(w))
     fail(e["speed"] ? e["speed"] : e, item,
          "speed " + speed_text(*el.own_speed()) + " disagrees with body '" + crank->name +
              "' (its spin LOF turns at " + speed_text(w) +
              "); omit the element's 'speed' to follow the crank");
+  return el.own_speed();
+}
+
+// A firing cylinder (a pressure table or map over crank angle) on a crank at
+// rest or turning backwards holds its piston at one angle under a constant gas
+// load, or reads the table backwards: an error, not a run.
+void SceneReader::check_firing_speed(const SpeedProfile* w, const Node& e, const std::string& item,
+                                     const ParamValues& values) const {
+  const bool fires = (values.texts.count("pressure_file") && values.given("pressure_file")) ||
+                     (values.texts.count("pressure_map") && values.given("pressure_map"));
+  if (!fires || !w || w->min_speed() > 0.0) return;
+  if (w->max_speed() > 0.0) {
+    warnings_.push_back(file_ + ":" + std::to_string(e.Mark().line + 1) + ": " + item +
+                        ": the cylinder fires but the crank's speed profile reaches " +
+                        format_number(w->min_speed()) +
+                        " rad/s: while the crank is at rest or turns backwards the piston "
+                        "sits under the gas load of one crank angle");
+    return;
+  }
+  fail(e["speed"] ? e["speed"] : e, item,
+       "the cylinder fires (" +
+           std::string(values.given("pressure_file") ? "pressure_file" : "pressure_map") +
+           ") but the crank turns at " + speed_text(*w) +
+           ": a firing engine needs a positive crank speed (a crank at rest holds the piston at "
+           "one angle under a constant gas load); speeds are in rad/s, 3000 rpm is 314.159 "
+           "rad/s");
 }
 
 // The operating point's load is stated once, in the scene's operating_point
@@ -165,9 +192,12 @@ void SceneReader::read_element(const Node& e, std::size_t i, Model& model) {
     values.numbers[spec.key] = x;
   }
   try {
-    complete_params(*type, values, file_ + ":" + std::to_string(e.Mark().line + 1) + ": " + item);
+    const std::string at = file_ + ":" + std::to_string(e.Mark().line + 1) + ": " + item;
+    complete_params(*type, values, at);
+    check_plausible(*type, values, at, warnings_);
     std::unique_ptr<Element> element = type->make(name, idx, values);
-    connect_crank_speed(*element, e, item, model);
+    const SpeedProfile* speed = connect_crank_speed(*element, e, item, model);
+    if (type->type == "piston-conrod") check_firing_speed(speed, e, item, values);
     connect_operating_load(*element, e, item);
     model.add_element(std::move(element));
   } catch (const InputError& err) {

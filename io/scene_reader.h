@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "bodies/cylinder_fit.h"
+#include "elements/registry.h"
 #include "io/scene.h"
 
 namespace evas::scene_detail {
@@ -202,8 +203,12 @@ class SceneReader {
   Lof read_lof(const Node& l, const std::string& item) const;
   void read_marker(const Node& m, std::size_t i, Model& model);
   void read_element(const Node& e, std::size_t i, Model& model);
-  void connect_crank_speed(Element& el, const Node& e, const std::string& item, const Model& model);
+  /// The speed profile the element prescribes (its own or the crank's), or null.
+  const SpeedProfile* connect_crank_speed(Element& el, const Node& e, const std::string& item,
+                                          const Model& model);
   void connect_operating_load(Element& el, const Node& e, const std::string& item);
+  void check_firing_speed(const SpeedProfile* w, const Node& e, const std::string& item,
+                          const ParamValues& values) const;
   void read_joint(const Node& e, std::size_t i, Model& model);
   IntegratorSettings read_integrator(const Node& n) const;
   OutputSpec read_output(const Node& n, const Model& model, double t_start, double t_end) const;
@@ -215,6 +220,8 @@ class SceneReader {
   std::optional<double> load_;
   Node load_node_;
   bool load_read_ = false;
+  // plausibility warnings, for Scene::warnings (read_lof is const)
+  mutable std::vector<std::string> warnings_;
 };
 
 }  // namespace evas::scene_detail

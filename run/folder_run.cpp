@@ -1,8 +1,11 @@
 // A run into an output folder (folder_run.h).
 #include "run/folder_run.h"
 
+#include <chrono>
+#include <ctime>
 #include <iostream>
 #include <memory>
+#include <vector>
 
 #include "io/results.h"
 #include "io/run_lock.h"
@@ -64,6 +67,35 @@ void write_after(FolderResult& r, const std::string& prefix, Write&& write) {
   }
 }
 
+// The files a run writes into its folder.
+const char* const kRunFiles[] = {"results.h5", "summary.json", "results.csv"};
+
+// "results.h5 and summary.json, written 2026-11-28 17:40 UTC": the earlier
+// run's files in `dir`, or "" when there are none.
+std::string earlier_results(const std::filesystem::path& dir) {
+  std::vector<std::string> found;
+  std::filesystem::file_time_type newest{};
+  for (const char* f : kRunFiles) {
+    std::error_code ec;
+    if (!std::filesystem::exists(dir / f, ec)) continue;
+    found.emplace_back(f);
+    const auto t = std::filesystem::last_write_time(dir / f, ec);
+    if (!ec && t > newest) newest = t;
+  }
+  if (found.empty()) return "";
+  std::string s;
+  for (std::size_t i = 0; i < found.size(); ++i)
+    s += (i == 0 ? "" : i + 1 == found.size() ? " and " : ", ") + found[i];
+  const auto sys = std::chrono::time_point_cast<std::chrono::system_clock::duration>(
+      newest - std::filesystem::file_time_type::clock::now() + std::chrono::system_clock::now());
+  const std::time_t tt = std::chrono::system_clock::to_time_t(sys);
+  std::tm tm{};
+  char buf[32];
+  if (gmtime_r(&tt, &tm) && std::strftime(buf, sizeof buf, "%Y-%m-%d %H:%M:%S UTC", &tm))
+    s += std::string(", written ") + buf;
+  return s;
+}
+
 }  // namespace
 
 FolderResult run_into_folder(const Scene& scene, double t_end, const IntegratorSettings& settings,
@@ -77,6 +109,24 @@ FolderResult run_into_folder(const Scene& scene, double t_end, const IntegratorS
   // One run per folder: refuse before anything in it is touched.
   const RunLock lock(opt.dir);
   if (!lock.note().empty()) std::cerr << opt.log_prefix << ": warning: " << lock.note() << "\n";
+  // An earlier run's results are never replaced silently (docs/errors.md).
+  if (const std::string earlier = earlier_results(opt.dir); !earlier.empty()) {
+    if (!opt.overwrite)
+      throw InputError(opt.dir.string() + ": the folder holds an earlier run's results (" +
+                       earlier +
+                       "): give --overwrite to replace them, or choose another folder with "
+                       "--out DIR");
+    for (const char* f : kRunFiles) {
+      std::error_code ec;
+      std::filesystem::remove(opt.dir / f, ec);
+      if (ec)
+        throw InputError((opt.dir / f).string() +
+                         ": cannot remove the earlier run's file (--overwrite): " + ec.message());
+    }
+    if (!opt.quiet)
+      std::cerr << opt.log_prefix << ": replacing the earlier results in " << opt.dir.string()
+                << " (" << earlier << ", --overwrite)\n";
+  }
   const Stop stop(opt.max_wall);  // signals from here on end the run in order
 
   FolderResult r;

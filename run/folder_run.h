@@ -14,10 +14,12 @@
 namespace evas::run {
 
 struct FolderOptions {
-  std::filesystem::path dir;            ///< created when missing
-  bool csv = false;                     ///< also DIR/results.csv
-  double max_wall = 0.0;                ///< wall-time limit [s]; 0: none
-  bool quiet = false;                   ///< no progress line, no start and end lines
+  std::filesystem::path dir;  ///< created when missing
+  bool csv = false;           ///< also DIR/results.csv
+  double max_wall = 0.0;      ///< wall-time limit [s]; 0: none
+  bool quiet = false;         ///< no progress line, no start and end lines
+  /// Replace an earlier run's results in `dir`; without it such a folder is refused.
+  bool overwrite = false;
   std::string log_prefix = "evas run";  ///< of the lines on stderr
 };
 
@@ -30,7 +32,10 @@ struct FolderResult {
 
 /// Runs `scene` to `t_end` with `settings` into `opt.dir`. Throws InputError
 /// (nothing written) for bad input: an empty output grid, a folder that
-/// cannot be made or that another run holds.
+/// cannot be made or that another run holds, or (without `opt.overwrite`) a
+/// folder that holds an earlier run's results. With `opt.overwrite` the earlier
+/// results.h5, summary.json and results.csv are removed before the run starts,
+/// so that nothing of the earlier run is left beside the new one.
 FolderResult run_into_folder(const Scene& scene, double t_end, const IntegratorSettings& settings,
                              const FolderOptions& opt);
 

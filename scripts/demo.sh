@@ -19,7 +19,7 @@ fi
 mkdir -p "$out"
 
 echo "== evas run scenes/demo.yaml"
-"$evas" run "$root/scenes/demo.yaml" --out "$out" --csv
+"$evas" run "$root/scenes/demo.yaml" --out "$out" --csv --overwrite
 
 if ! command -v gnuplot >/dev/null 2>&1; then
   echo "demo: gnuplot not found, no plot; results in $out" >&2

@@ -79,6 +79,34 @@ stack_top() {
     head -1 | sed -E 's/^ *#[0-9]+ 0x[0-9a-f]+ //' || true
 }
 # One line: what the report says (first matching line).
+# Where an out-of-memory input works when its memory is not one large
+# allocation: the RSS watcher's report then names no allocation of the input,
+# and the memory may be churned through rather than held (HDF5's metadata cache
+# on a corrupt object header allocates and frees blocks of a few hundred kB
+# in a loop, and the sanitizer's allocator does not return them in time). The
+# input is run alone, and when its resident memory passes 1 GB its main
+# thread's stack is taken with gdb, in the sanitizer's frame format.
+sample_stack() {  # BIN INPUT OUT
+  local pid rss i
+  : >"$3"
+  command -v gdb >/dev/null 2>&1 || { echo "(gdb missing: no stack sample)" >"$3"; return; }
+  ASAN_OPTIONS="$ASAN_OPTIONS:detect_leaks=0" EVAS_FUZZ_SKIP=/dev/null TMPDIR="$work/tmp" \
+    "$1" -rss_limit_mb=4096 -timeout=60 "$2" >/dev/null 2>&1 &
+  pid=$!
+  for i in $(seq 1 600); do
+    sleep 0.1
+    rss=$(awk '/^VmRSS/ { print $2 }' "/proc/$pid/status" 2>/dev/null || true)
+    [ -n "$rss" ] || break
+    if [ "$rss" -gt 1048576 ]; then
+      gdb -p "$pid" -batch -ex "thread 1" -ex "bt 60" 2>/dev/null |
+        sed -nE 's/^#([0-9]+) +(0x[0-9a-f]+ in .*)/    #\1 \2/p' >"$3" || true
+      break
+    fi
+  done
+  kill -9 "$pid" 2>/dev/null || true
+  wait "$pid" 2>/dev/null || true
+}
+
 summary() {
   grep -m1 -E 'ERROR: (AddressSanitizer|LeakSanitizer|libFuzzer)|runtime error:|terminate called|ALARM: working on the last Unit|==[0-9]+== ?ERROR' "$1" |
     sed -E 's/^==[0-9]+==//' | cut -c1-160 || true
@@ -143,6 +171,12 @@ for t in $targets; do
         TMPDIR="$work/tmp" timeout 60 "$bin" -rss_limit_mb=2048 "${limit[@]}" -timeout=10 \
         "$a" >"$rlog" 2>&1 || true
       top="$(stack_top "$rlog")"
+      if [ "$kind" = oom ] && ! grep -q 'malloc(' "$rlog"; then
+        # no allocation of its own exceeded the limit: where does the input work?
+        sample_stack "$bin" "$a" "$rlog.sample"
+        sampled="$(stack_top "$rlog.sample")"
+        [ -n "$sampled" ] && top="$sampled (sampled at 1 GB resident)"
+      fi
       [ -n "$top" ] || top="$(stack_top "$log.part")"
       what="$(summary "$rlog")"
       [ -n "$what" ] || what="$(summary "$log.part")"

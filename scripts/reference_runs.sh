@@ -27,7 +27,7 @@ run() {
   name=$1
   shift
   code=0
-  "$evas" run "$@" --out "$out/$name" --csv --quiet > "$out/$name.log" 2>&1 || code=$?
+  "$evas" run "$@" --out "$out/$name" --csv --quiet --overwrite > "$out/$name.log" 2>&1 || code=$?
   echo "$code" > "$out/$name.exit"
   echo "  $name: exit $code"
 }

@@ -23,6 +23,7 @@ SceneInfo probe_scene(const SceneSource& src) {
   info.integrator = scene.integrator;
   info.t_start = scene.t_start;
   info.t_end = scene.t_end;
+  info.warnings = scene.warnings;
   if (scene.output.grid == "crank-angle")
     for (std::size_t i = 0; i < info.channels.size(); ++i)
       if (info.channels[i].name == "crank_angle") info.crank_channel = static_cast<int>(i);

@@ -25,6 +25,7 @@ struct SceneInfo {
   int crank_channel = -1;         ///< index of crank_angle, -1 on the time grid
   IntegratorSettings integrator;  ///< the scene's integrator block
   double t_start = 0.0, t_end = 0.0;
+  std::vector<std::string> warnings;  ///< the scene's plausibility warnings (Scene::warnings)
 };
 
 /// Parses the scene and builds its outputs once. Throws InputError.

@@ -77,6 +77,7 @@ Setup prepare(const Options& opt) {
   Setup s;
   s.src = load_scene_source(opt.scene, opt.params, opt.t_end);
   s.info = probe_scene(s.src);
+  for (const std::string& w : s.info.warnings) say(opt, "evas study: warning: " + w);
   s.channels = select_channels(s.info.channels, opt.channels);
   for (int c : s.channels) {
     s.names.push_back(s.info.channels[static_cast<std::size_t>(c)].name);

@@ -1,4 +1,5 @@
 // `evas run` under faults, part two: two runs into one folder, a stale lock,
+// a folder holding an earlier run's results,
 // scene names that would escape out/, names that break CSV or JSON, a study
 // stopped by SIGTERM, a state an element refuses, steps that no longer advance
 // time, and a coarse fixed step. The tests run the real `evas` program in
@@ -53,6 +54,49 @@ TEST(RunFaults, StaleLockIsTakenOver) {
                              tmp.path() / "log");
   EXPECT_EQ(o.code, 0) << o.log;
   EXPECT_EQ(read_results((out / "results.h5").string()).time.size(), 21u);
+  expect_no_leftovers(out);
+}
+
+// A finished run's results are never replaced silently: a second run into
+// the folder is refused, naming --overwrite and --out, and leaves the first
+// run's files as they were; with --overwrite it replaces them, and a CSV of
+// the first run that the second does not write is removed with them.
+TEST(RunFaults, EarlierResultsAreNotReplacedSilently) {
+  TempFolder tmp;
+  const fs::path out = tmp.path() / "out";
+  write_text(tmp.path() / "a.yaml", demo_scene("first", "0.01", "5e-4"));
+  write_text(tmp.path() / "b.yaml", demo_scene("second", "0.005", "5e-4"));
+  const Outcome first =
+      run_evas({"run", (tmp.path() / "a.yaml").string(), "--out", out.string(), "-q", "--csv"},
+               tmp.path() / "log1");
+  ASSERT_EQ(first.code, 0) << first.log;
+  const std::string h5 = read_text(out / "results.h5"), json = read_text(out / "summary.json");
+  const Outcome refused = run_evas({"run", (tmp.path() / "b.yaml").string(), "--out", out.string(),
+                                    "-q", "--integrator", "cvode"},
+                                   tmp.path() / "log2");
+  EXPECT_EQ(refused.code, 1) << refused.log;
+  EXPECT_TRUE(contains(refused.log, out.string() +
+                                        ": the folder holds an earlier run's results "
+                                        "(results.h5, summary.json and results.csv, written "))
+      << refused.log;
+  EXPECT_TRUE(contains(refused.log, "give --overwrite to replace them")) << refused.log;
+  EXPECT_TRUE(contains(refused.log, "--out DIR")) << refused.log;
+  EXPECT_EQ(read_text(out / "results.h5"), h5);  // not touched
+  EXPECT_EQ(read_text(out / "summary.json"), json);
+  EXPECT_TRUE(fs::exists(out / "results.csv"));
+
+  const Outcome replaced = run_evas({"run", (tmp.path() / "b.yaml").string(), "--out", out.string(),
+                                     "--overwrite", "--integrator", "cvode"},
+                                    tmp.path() / "log3");
+  EXPECT_EQ(replaced.code, 0) << replaced.log;
+  EXPECT_TRUE(contains(replaced.log, "replacing the earlier results in " + out.string()))
+      << replaced.log;
+  const ResultsData d = read_results((out / "results.h5").string());
+  EXPECT_TRUE(contains(d.scene, "name: second"));
+  EXPECT_EQ(d.integrator, "cvode");
+  EXPECT_EQ(d.time.size(), 11u);
+  EXPECT_FALSE(fs::exists(out / "results.csv"))
+      << "the first run's CSV was left beside the second's results";
   expect_no_leftovers(out);
 }
 

@@ -30,7 +30,7 @@ case5=$tmp/case5.yaml
 for c in 1 2 3 4 5; do
   echo "== case $c"
   eval scene=\$case$c
-  /usr/bin/time -f "case $c: %e s wall, %M kB peak" "$evas" run "$scene" --out "$out/case$c" --csv
+  /usr/bin/time -f "case $c: %e s wall, %M kB peak" "$evas" run "$scene" --out "$out/case$c" --csv --overwrite
   for b in 1 2 3 4 5; do
     for ch in fx fy; do
       "$evas" spectrum "$out/case$c/results.h5" --channel main$b.$ch --max-order 12 --cycles 2 \

@@ -30,10 +30,10 @@ sed -e "s|speed: 314.159}|speed_profile: [[0, $w0], [$ramp, $w1]]}|" \
 # the steady run at exactly the speed compared
 sed -e "s|speed: 314.159}|speed: $w}|" "$tmp/case1.yaml" > "$tmp/steady.yaml"
 
-/usr/bin/time -f "run-up, ida: %e s wall" "$evas" run "$tmp/runup.yaml" --out "$out/runup-ida" --csv --quiet
+/usr/bin/time -f "run-up, ida: %e s wall" "$evas" run "$tmp/runup.yaml" --out "$out/runup-ida" --csv --quiet --overwrite
 /usr/bin/time -f "run-up, generalized-alpha: %e s wall" "$evas" run "$tmp/runup.yaml" \
-  --integrator generalized-alpha --step 5e-6 --out "$out/runup-ga" --csv --quiet
-"$evas" run "$tmp/steady.yaml" --out "$out/steady" --csv --quiet
+  --integrator generalized-alpha --step 5e-6 --out "$out/runup-ga" --csv --quiet --overwrite
+"$evas" run "$tmp/steady.yaml" --out "$out/steady" --csv --quiet --overwrite
 
 py=python3
 {

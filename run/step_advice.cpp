@@ -1,4 +1,4 @@
-#include "apps/step_advice.h"
+#include "run/step_advice.h"
 
 #include <cmath>
 #include <sstream>
@@ -34,6 +34,21 @@ std::string coarse_step_warning(const Model& model, const IntegratorSettings& s)
                "error of 1e-3 in the main-bearing loads)"
              : "Set `step` (on the paper's engine about 50 per period, 8e-6 s, for an error of "
                "1e-3 in the main-bearing loads) or step_control=adaptive");
+  return os.str();
+}
+
+std::string step_count_warning(const IntegratorSettings& s, double t_start, double t_end) {
+  if (!takes_fixed_steps(s) || !(s.step > 0.0)) return "";
+  const double steps = (t_end - t_start) / s.step;
+  if (!(steps > kMaxPlausibleSteps)) return "";
+  // at a few microseconds per step for the smallest scenes, more for an engine
+  const double days_at_10us = steps * 1e-5 / 86400.0;
+  std::ostringstream os;
+  os.precision(3);
+  os << s.name << ": step " << s.step << " s needs about " << steps
+     << " steps to reach t = " << t_end << " s (more than " << kMaxPlausibleSteps
+     << "; at 10 us per step that is " << days_at_10us << " days): steps are in seconds, is "
+     << s.step << " a slip? (the paper's engine runs at 1e-5 s; 1 us is 1e-6)";
   return os.str();
 }
 

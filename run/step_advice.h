@@ -5,6 +5,7 @@
 
 #include <string>
 
+#include "elements/plausibility.h"
 #include "integrators/integrator.h"
 #include "model/model.h"
 
@@ -18,5 +19,10 @@ constexpr double kMinStepsPerPeriod = 10.0;
 /// kMinStepsPerPeriod steps per period of the highest mode of the model's
 /// bodies; then a warning naming the step, the mode and what to do.
 std::string coarse_step_warning(const Model& model, const IntegratorSettings& s);
+
+/// "" unless `s` takes fixed steps so small that the run from `t_start` to
+/// `t_end` needs more than kMaxPlausibleSteps (elements/plausibility.h) steps;
+/// then a warning with the estimated count, said before the run starts.
+std::string step_count_warning(const IntegratorSettings& s, double t_start, double t_end);
 
 }  // namespace evas
