@@ -43,7 +43,7 @@ validate: build
 	./validation/engine/runup.sh $(BUILD) $(VALIDATION_OUT)/runup
 
 # Every test (C++, CTest; Python, pytest), then the Python package installed
-# (scripts/install_python.sh) so that `python3 -c "import evas"` works.
+# (scripts/install_python.sh) and checked by calling it with each python3.
 test: build
 	cd $(BUILD) && ctest --output-on-failure -j$(JOBS)
 	./scripts/install_python.sh $(BUILD)

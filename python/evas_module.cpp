@@ -10,6 +10,7 @@
 
 #include <cmath>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -22,6 +23,7 @@
 #include "io/scene.h"
 #include "run/run.h"
 #include "solver/system.h"
+#include "study/scene_edit.h"
 
 namespace py = pybind11;
 using evas::SpMat;
@@ -60,14 +62,27 @@ py::tuple csc_parts(const SpMat& A) {
 
 class Model {
  public:
-  explicit Model(const std::string& path)
-      : scene_(evas::read_scene(path)),
+  // A scene file, or (with `text`) YAML text read as if it were the file
+  // `path` (relative body files are resolved from its folder); `params` are
+  // ITEM.KEY=VALUE edits as evas run --param takes them.
+  Model(const std::string& path, const std::optional<std::string>& text,
+        const std::vector<std::string>& params)
+      : scene_(load(path, text, params)),
         sys_(std::make_unique<evas::System>(*scene_.model)),
         out_(std::make_unique<evas::OutputSet>(scene_.output, *sys_, scene_.t_start, scene_.t_end)),
         n_(sys_->size()),
         K_(sys_->jacobian_pattern()),
         C_(sys_->jacobian_pattern()),
         f_(n_) {}
+
+  static evas::Scene load(const std::string& path, const std::optional<std::string>& text,
+                          const std::vector<std::string>& params) {
+    if (!text && params.empty()) return evas::read_scene(path);
+    const evas::study::SceneSource src =
+        text ? evas::study::edited(evas::study::SceneSource{path, *text, false}, params, "params")
+             : evas::study::load_scene_source(path, params);
+    return src.parse();
+  }
 
   int size() const { return n_; }
   std::string name() const { return scene_.name; }
@@ -79,12 +94,23 @@ class Model {
     return names;
   }
   std::vector<double> output_times() const { return out_->times(); }
-  std::map<std::string, std::string> settings() const {
-    std::map<std::string, std::string> m;
-    for (const auto& s : evas::integrator_settings())
-      m[s.key] = evas::get_integrator_setting(scene_.integrator, s.key);
-    return m;
+  // every setting with its type: float, int, bool or str (a choice)
+  py::dict settings() const {
+    py::dict d;
+    for (const auto& s : evas::integrator_settings()) {
+      const std::string v = evas::get_integrator_setting(scene_.integrator, s.key);
+      if (s.kind == "number")
+        d[py::str(s.key)] = py::float_(std::stod(v));
+      else if (s.kind == "integer")
+        d[py::str(s.key)] = py::int_(std::stol(v));
+      else if (s.kind == "bool")
+        d[py::str(s.key)] = py::bool_(v == "true" || v == "1" || v == "yes");
+      else
+        d[py::str(s.key)] = py::str(v);
+    }
+    return d;
   }
+  std::vector<std::string> warnings() const { return scene_.warnings; }
 
   py::tuple initial_state() const {
     Vec q, v;
@@ -263,7 +289,11 @@ PYBIND11_MODULE(_evas, m) {
   py::register_exception<evas::InputError>(m, "InputError", PyExc_ValueError);
   py::register_exception<evas::RunError>(m, "RunError", PyExc_RuntimeError);
   py::class_<Model>(m, "Model")
-      .def(py::init<const std::string&>(), py::arg("scene"))
+      .def(py::init<const std::string&, const std::optional<std::string>&,
+                    const std::vector<std::string>&>(),
+           py::arg("scene"), py::arg("text") = py::none(),
+           py::arg("params") = std::vector<std::string>{})
+      .def_property_readonly("warnings", &Model::warnings)
       .def_property_readonly("size", &Model::size)
       .def_property_readonly("name", &Model::name)
       .def_property_readonly("t_start", &Model::t_start)

@@ -12,6 +12,29 @@ docs/extending.md describes every function.
 import os as _os
 import sys as _sys
 
+
+def _missing(module, debian_package):
+    """An ImportError naming what this interpreter lacks and how to install it."""
+    deb = "/usr/bin/python3"
+    how = (
+        "install it with: apt-get install -y %s" % debian_package
+        if _os.path.realpath(_sys.executable) == _os.path.realpath(deb)
+        else "install it with: %s -m pip install %s (or run evas with %s, whose "
+        "Debian package %s provides it)" % (_sys.executable, module, deb, debian_package)
+    )
+    return ImportError(
+        "evas needs %s, which this Python (%s) does not have: %s"
+        % (module, _sys.executable, how)
+    )
+
+
+# NumPy carries every array evas returns: without it the first call would fail
+# with a bare "No module named numpy", so the import says so at once.
+try:
+    import numpy as _numpy  # noqa: F401
+except ImportError:
+    raise _missing("numpy", "python3-numpy") from None
+
 # Integrator plug-ins resolve evas's symbols against the module that loads them:
 # load the compiled part with global symbol visibility.
 _flags = _sys.getdlopenflags()
@@ -30,7 +53,10 @@ __all__ = ["Model", "read_results", "integrators", "load_plugin", "InputError", 
 
 
 def _csc(parts):
-    import scipy.sparse  # imported when first needed: `import evas` needs no SciPy
+    try:  # imported when first needed: `import evas` needs no SciPy
+        import scipy.sparse
+    except ImportError:
+        raise _missing("scipy", "python3-scipy") from None
 
     data, indices, indptr, shape = parts
     return scipy.sparse.csc_matrix((data, indices, indptr), shape=shape)
@@ -39,8 +65,15 @@ def _csc(parts):
 class Model(_evas.Model):
     """A scene's model: the problem qdd + f(t, q, v) = 0 of its bodies and elements.
 
+    Model("scene.yaml"), Model(text=YAML) (a scene given as text; relative body
+    files are found from base_dir, default the current folder), and either with
+    params={"crank.lof.speed": 418.879} (or ["crank.lof.speed=418.879"]): the
+    edits of evas run --param.
+
     size, name, t_start, t_end, channels, output_times, settings (the scene's
-    integrator settings as text); initial_state() -> (q, v); force(t, q, v) -> f;
+    integrator settings, each as float, int or str), warnings (the scene's
+    plausibility warnings: likely unit slips); initial_state() -> (q, v);
+    force(t, q, v) -> f;
     jacobian(t, q, v) -> (K, C); rhs(t, y) and rhs_jacobian(t, y) of the first-
     order form y' = [v; -f]; residual(t, y, yd) and iteration_matrix(t, y, yd, cj)
     = dF/dy + cj dF/dyd of F = [yd_q - v; yd_v + f] (what IDA solves);
@@ -51,6 +84,16 @@ class Model(_evas.Model):
     q, v) -> (q, v, lambda) projected onto the constraints. residual, rhs and
     their Jacobians are those of the unconstrained part.
     """
+
+    def __init__(self, scene=None, params=None, text=None, base_dir=None):
+        if (scene is None) == (text is None):
+            raise TypeError("Model: give a scene file or text=YAML, not both")
+        if isinstance(params, dict):
+            params = ["%s=%s" % (k, _setting_text(v)) for k, v in params.items()]
+        params = list(params or [])
+        if text is not None:
+            scene = _os.path.join(base_dir or _os.getcwd(), "(text).yaml")
+        super().__init__(_os.fspath(scene), text, params)
 
     def jacobian(self, t, q, v):
         """K = df/dq and C = df/dv as scipy.sparse.csc_matrix (fixed pattern)."""
@@ -75,6 +118,13 @@ class Model(_evas.Model):
         Returns {time, values (rows x channels), channels, stats, status, integrator};
         a failed run has status "failed: ..." and the rows computed so far."""
         return self._run(integrator, dict(settings or {}), t_end)
+
+
+def _setting_text(v):
+    """A Python value as evas reads it: repr keeps every digit of a float."""
+    if isinstance(v, bool):
+        return "true" if v else "false"
+    return repr(v) if isinstance(v, float) else str(v)
 
 
 def read_results(path):

@@ -34,7 +34,50 @@ def test_model_basics(model):
     assert q.shape == (28,) and v.shape == (28,)
     assert model.force(0.0, q, v).shape == (28,)
     assert len(model.channels) == 30 and model.t_end == pytest.approx(0.15)
-    assert model.settings["rtol"] != ""
+    s = model.settings
+    assert isinstance(s["rtol"], float) and s["rtol"] > 0
+    assert isinstance(s["max_steps"], int) and isinstance(s["name"], str)
+    assert model.warnings == []
+
+
+def test_model_from_text_and_params():
+    """YAML text (bodies found from base_dir) and --param edits give the same
+    model as the file; an edit shows in the model, a unit slip in warnings."""
+    text = open(DEMO).read()
+    a = evas.Model(text=text, base_dir=os.path.dirname(DEMO))
+    b = evas.Model(DEMO)
+    q, v = b.initial_state()
+    assert a.size == b.size and a.channels == b.channels
+    assert np.array_equal(a.force(0.0, q, v), b.force(0.0, q, v))
+    c = evas.Model(DEMO, params={"time.end": 0.05, "integrator.rtol": 1e-7})
+    assert c.t_end == pytest.approx(0.05) and c.settings["rtol"] == pytest.approx(1e-7)
+    d = evas.Model(DEMO, params=["time.end=0.05"])
+    assert d.t_end == pytest.approx(0.05)
+    # 3000 typed for rad/s (it was rpm): run, with the warning naming the slip
+    slip = evas.Model(DEMO, params={"shaft.lof.speed": 3000})
+    assert any("3000 rpm would be 314.159 rad/s" in w for w in slip.warnings), slip.warnings
+    with pytest.raises(evas.InputError, match="nosuch"):
+        evas.Model(DEMO, params={"nosuch.key": 1})
+    with pytest.raises(TypeError):
+        evas.Model(DEMO, text=text)
+
+
+def test_missing_numpy_is_named():
+    """An interpreter without NumPy gets an ImportError that names NumPy and the
+    command that installs it, at import time (not a bare error at the first
+    call). Simulated by hiding numpy from a child interpreter."""
+    code = (
+        "import sys\n"
+        "class Hide:\n"
+        "    def find_spec(self, name, path=None, target=None):\n"
+        "        if name == 'numpy' or name.startswith('numpy.'):\n"
+        "            raise ImportError('No module named numpy')\n"
+        "sys.meta_path.insert(0, Hide())\n"
+        "import evas\n"
+    )
+    r = subprocess.run([__import__("sys").executable, "-c", code], capture_output=True, text=True)
+    assert r.returncode != 0
+    assert "evas needs numpy" in r.stderr and "install it with" in r.stderr, r.stderr
 
 
 def test_jacobian_against_differences(model):
