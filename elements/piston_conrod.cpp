@@ -1,5 +1,6 @@
 #include "elements/piston_conrod.h"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -107,6 +108,14 @@ void PistonConrod::follow_speed(const SpeedProfile& crank) {
   if (gas_map_)
     gas_map_->check_covers(crank.min_speed(), crank.max_speed(), "piston-conrod '" + name() + "'");
   drive_.follow(crank);
+}
+
+double PistonConrod::peak_gas_pressure() const {
+  double peak = gas_ ? gas_->max_pressure() : 0.0;
+  if (gas_map_)
+    for (const auto& load : gas_map_->loads())
+      for (const auto& e : load.entries) peak = std::max(peak, e.table.max_pressure());
+  return peak;
 }
 
 void PistonConrod::set_pressure_map(std::shared_ptr<const PressureMap> map) {

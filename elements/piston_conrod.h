@@ -162,6 +162,9 @@ class PistonConrod : public Element {
   /// InputError naming the element, the map and its loads when outside them.
   /// Without such a map: nothing to read it (the scene reader refuses the load).
   void set_operating_load(double load) override;
+  /// The highest pressure of its table, or of every table of its map [Pa]; 0
+  /// when it does not fire (for the plausibility check of the scene reader).
+  double peak_gas_pressure() const;
 
  private:
   PistonConrodParams p_;

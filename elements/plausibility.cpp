@@ -62,6 +62,13 @@ std::vector<PlausibleRange> make_table() {
       {"belt", "radii", Q::Length, 0.01, 1.0, false, false, true, "a pulley's radius"},
       {"lof", "speed", Q::Speed, 1.0, 1600.0, true, false, true,
        "a crank's speed (10 to 15000 rpm)"},
+      {"generate", "length", Q::Length, 0.01, 20.0, false, false, false, "a body's length"},
+      {"generate", "width", Q::Length, 0.002, 5.0, false, false, false, "a body's width"},
+      {"generate", "youngs", Q::Modulus, 1e8, 1e12, false, false, false,
+       "a structural material's Young's modulus (steel 2.1e11 Pa)"},
+      {"generate", "area", Q::Area, 1e-8, 1.0, false, false, false, "a bar's cross-section"},
+      {"generate", "density", Q::Density, 500.0, 25000.0, false, false, false,
+       "a structural material's density (steel 7850 kg/m^3)"},
   };
 }
 
@@ -83,6 +90,12 @@ const char* si_unit(Quantity q) {
       return "N s/m";
     case Q::Force:
       return "N";
+    case Q::Modulus:
+      return "Pa";
+    case Q::Density:
+      return "kg/m^3";
+    case Q::Area:
+      return "m^2";
   }
   return "";
 }
@@ -106,6 +119,12 @@ const char* unit_rule(Quantity q) {
       return "damping is in N s/m";
     case Q::Force:
       return "forces are in N";
+    case Q::Modulus:
+      return "moduli are in Pa";
+    case Q::Density:
+      return "densities are in kg/m^3";
+    case Q::Area:
+      return "areas are in m^2";
   }
   return "";
 }
@@ -134,6 +153,12 @@ std::vector<Slip> slips(Quantity q) {
       return {{"N s/mm", 1e3}};
     case Q::Force:
       return {{"kN", 1e3}};
+    case Q::Modulus:
+      return {{"MPa (N/mm^2)", 1e6}, {"GPa", 1e9}};
+    case Q::Density:
+      return {{"g/cm^3", 1e3}, {"t/mm^3", 1e12}};
+    case Q::Area:
+      return {{"mm^2", 1e-6}, {"cm^2", 1e-4}};
   }
   return {};
 }
@@ -283,6 +308,19 @@ std::string mesh_units_warning(double mass, const Vec3& extent, const MeshUnits&
              box(e) + " m): check --units";
   }
   return w + "; no other unit system explains it: check the mesh and the material data";
+}
+
+std::string peak_pressure_warning(double peak, const std::string& table) {
+  if (peak >= kMinPeakPressure && peak <= kMaxPeakPressure) return "";
+  const PlausibleRange r{"",    "",    Q::Pressure, kMinPeakPressure, kMaxPeakPressure, false,
+                         false, false, ""};
+  std::string w = "the cylinder pressure " + table + " peaks at " + num(peak) +
+                  " Pa, outside the plausible " + num(kMinPeakPressure) + " .. " +
+                  num(kMaxPeakPressure) + " Pa of a cylinder (5 to 400 bar): pressures are in Pa";
+  const std::vector<Slip> candidates = slips(Q::Pressure);
+  if (const Slip* s = best_slip(r, peak, candidates))
+    return w + " (a table in " + s->unit + " would peak at " + num(peak * s->factor) + " Pa)";
+  return w;
 }
 
 }  // namespace evas

@@ -17,11 +17,24 @@
 namespace evas {
 
 /// What a parameter measures: decides the unit slips a warning suggests.
-enum class Quantity { Length, Speed, Pressure, Viscosity, Mass, Stiffness, Damping, Force };
+enum class Quantity {
+  Length,
+  Speed,
+  Pressure,
+  Viscosity,
+  Mass,
+  Stiffness,
+  Damping,
+  Force,
+  Modulus,  ///< Pa, typed in MPa (N/mm^2) or GPa
+  Density,  ///< kg/m^3, typed in g/cm^3 or t/mm^3
+  Area      ///< m^2, typed in mm^2 or cm^2
+};
 
 struct PlausibleRange {
-  std::string type;  ///< element type, or "lof" for a spin LOF's speed
-  std::string key;   ///< parameter
+  std::string
+      type;         ///< element type, "lof" for a spin LOF's speed, "generate" for a generated body
+  std::string key;  ///< parameter
   Quantity quantity;
   double lo, hi;            ///< plausible magnitude range in SI units
   bool zero_ok = false;     ///< 0 is plausible too (a term switched off)
@@ -73,6 +86,14 @@ std::string mesh_units_warning(double mass, const Vec3& extent, const MeshUnits&
 /// A piston's mass per cubic bore (kg/m^3): from a light car piston to a
 /// heavy diesel one.
 constexpr double kMinPistonDensity = 100.0, kMaxPistonDensity = 2e4;
+
+/// A firing cylinder's peak pressure (Pa): from a motored cylinder to the
+/// highest-loaded diesel. The check reads the table's peak, absolute or gauge.
+constexpr double kMinPeakPressure = 5e5, kMaxPeakPressure = 4e7;
+
+/// "" or a warning on a cylinder pressure table whose peak lies outside
+/// kMinPeakPressure .. kMaxPeakPressure, naming the unit slip (bar, MPa).
+std::string peak_pressure_warning(double peak, const std::string& table);
 
 /// Steps above which a fixed-step run draws a warning before it starts.
 constexpr double kMaxPlausibleSteps = 1e8;

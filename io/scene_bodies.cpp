@@ -112,6 +112,16 @@ std::shared_ptr<ModalBody> SceneReader::generate_body(const Node& g, const Node&
   if (g["area"]) spec.area = number_in(g["area"], it, "area", 0.0, inf, true);
   if (g["density"]) spec.density = number_in(g["density"], it, "density", 0.0, inf, true);
   spec.origin = vec3_or(g, "origin", it, Vec3::Zero());
+  // unit slips (elements/plausibility.h): mm for m, MPa for Pa, g/cm^3 for kg/m^3
+  for (const auto& [key, x] : {std::pair<const char*, double>{"length", spec.length},
+                               {"width", spec.width},
+                               {"youngs", spec.youngs},
+                               {"area", spec.area},
+                               {"density", spec.density}})
+    if (g[key])
+      if (std::string w = plausibility_warning(*plausible_range("generate", key), x); !w.empty())
+        warnings_.push_back(file_ + ":" + std::to_string(g[key].Mark().line + 1) + ": " + it +
+                            ": " + w);
 
   BuildOptions opt;
   opt.damping_ratio = has_zeta ? zeta : 0.0;

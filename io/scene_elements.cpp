@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <filesystem>
 
+#include "elements/piston_conrod.h"
 #include "elements/plausibility.h"
 #include "elements/registry.h"
 #include "io/scene_reader.h"
@@ -197,7 +198,16 @@ void SceneReader::read_element(const Node& e, std::size_t i, Model& model) {
     check_plausible(*type, values, at, warnings_);
     std::unique_ptr<Element> element = type->make(name, idx, values);
     const SpeedProfile* speed = connect_crank_speed(*element, e, item, model);
-    if (type->type == "piston-conrod") check_firing_speed(speed, e, item, values);
+    if (type->type == "piston-conrod") {
+      check_firing_speed(speed, e, item, values);
+      const double peak = static_cast<const PistonConrod&>(*element).peak_gas_pressure();
+      const std::string table = values.given("pressure_map")
+                                    ? "map '" + values.text("pressure_map") + "'"
+                                    : "table '" + values.text("pressure_file") + "'";
+      if (peak > 0.0)
+        if (std::string w = peak_pressure_warning(peak, table); !w.empty())
+          warnings_.push_back(at + ": " + w);
+    }
     connect_operating_load(*element, e, item);
     model.add_element(std::move(element));
   } catch (const InputError& err) {

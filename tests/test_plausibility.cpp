@@ -39,7 +39,7 @@ TEST(Plausibility, TableNamesDeclaredParametersInTheirUnits) {
     SCOPED_TRACE(r.type + "." + r.key);
     EXPECT_GT(r.hi, r.lo);
     EXPECT_GE(r.lo, 0.0);
-    if (r.type == "lof") continue;  // a scene key, not an element parameter
+    if (r.type == "lof" || r.type == "generate") continue;  // scene keys, not element parameters
     const ElementType& t = element_type(r.type);
     const ParamSpec* spec = nullptr;
     for (const auto& p : t.params)
@@ -88,6 +88,16 @@ TEST(Plausibility, UnitSlipsAreNamedWithTheirConversion) {
   EXPECT_TRUE(contains(warn("engine-mount", "k_x", 150), "(150 N/mm would be 150000 N/m)"));
   // grams: 450 g = 0.45 kg needs the bore (below); a piston of 50 t is out of range itself
   EXPECT_TRUE(contains(warn("piston-conrod", "piston_mass", 5e4), "(50000 g would be 50 kg)"));
+  // a generated body: MPa for Pa, g/cm^3 for kg/m^3, mm^2 for m^2
+  EXPECT_TRUE(
+      contains(warn("generate", "youngs", 210000), "(210000 MPa (N/mm^2) would be 2.1e+11 Pa)"));
+  EXPECT_TRUE(contains(warn("generate", "density", 7.85), "(7.85 g/cm^3 would be 7850 kg/m^3)"));
+  EXPECT_TRUE(contains(warn("generate", "area", 20), "(20 mm^2 would be 2e-05 m^2)"));
+  // a pressure table in bar: peak 80 -> 8e6 Pa
+  EXPECT_TRUE(contains(peak_pressure_warning(80, "table 'p.txt'"),
+                       "the cylinder pressure table 'p.txt' peaks at 80 Pa"));
+  EXPECT_TRUE(contains(peak_pressure_warning(80, "t"), "(a table in bar would peak at 8e+06 Pa)"));
+  EXPECT_EQ(peak_pressure_warning(1.4e7, "t"), "");
   // nothing explains it
   EXPECT_TRUE(contains(warn("journal-bearing", "clearance", 1e6), "no common unit slip"));
 }
