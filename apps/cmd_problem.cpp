@@ -99,7 +99,9 @@ int cmd_problem(const std::vector<std::string>& args) {
       "set", po::value<std::vector<std::string>>(),
       "KEY=VALUE: any integrator setting, repeatable (evas run --help-settings)")(
       "out", po::value<std::string>(),
-      "folder for summary.json, written also when the run fails (and the sweep's files)")(
+      "folder for summary.json, written also when the run fails (and the sweep's files); "
+      "one that holds an earlier run's summary.json is refused without --overwrite")(
+      "overwrite", "replace the summary.json of an earlier run in --out")(
       "work-precision",
       "sweep IDA in every formulation and radau in index-3/2/1 over rtol 1e-3..1e-10 and "
       "generalized-alpha over 8 step halvings (first-order problems: ida and radau over "
@@ -131,6 +133,15 @@ int cmd_problem(const std::vector<std::string>& args) {
     if (!vm.count("out")) throw InputError("--work-precision needs --out DIR for its table");
     problem_work_precision(lp, vm["out"].as<std::string>());
     return 0;
+  }
+  if (vm.count("out") && !vm.count("overwrite")) {
+    const std::filesystem::path earlier =
+        std::filesystem::path(vm["out"].as<std::string>()) / "summary.json";
+    std::error_code ec;
+    if (std::filesystem::exists(earlier, ec))
+      throw InputError(earlier.string() +
+                       ": the folder holds an earlier run's summary: give --overwrite to "
+                       "replace it, or choose another folder with --out DIR");
   }
   std::cout << "evas problem " << lp.name << ": " << lp.description << "\n"
             << "  integrator " << s.name << ", formulation " << s.formulation << ", rtol " << s.rtol

@@ -67,14 +67,14 @@ for p in andrews car-axis pendulum; do
   for f in ggl index-2 index-1 index-3 penalty; do
     for r in 1e-4 1e-8; do
       code=0
-      "$evas" problem "$p" --formulation $f --rtol $r --out "$out/problem-$p-$f-$r" \
+      "$evas" problem "$p" --formulation $f --rtol $r --overwrite --out "$out/problem-$p-$f-$r" \
         > "$out/problem-$p-$f-$r.log" 2>&1 || code=$?
       echo "$code" > "$out/problem-$p-$f-$r.exit"
     done
   done
   for i in generalized-alpha linear-acceleration radau; do
     code=0
-    "$evas" problem "$p" --integrator $i --out "$out/problem-$p-$i" \
+    "$evas" problem "$p" --integrator $i --overwrite --out "$out/problem-$p-$i" \
       > "$out/problem-$p-$i.log" 2>&1 || code=$?
     echo "$code" > "$out/problem-$p-$i.exit"
   done

@@ -562,6 +562,13 @@ TEST(Problems, Command) {
   EXPECT_NE(summary_ok.str().find("\"status\": \"completed\""), std::string::npos)
       << summary_ok.str();
   EXPECT_NE(summary_ok.str().find("\"mescd\": "), std::string::npos) << summary_ok.str();
+  // its summary is not replaced without --overwrite (docs/errors.md)
+  text = run_evas("problem car-axis --rtol 1e-5 --out " + ok_dir, code);
+  EXPECT_EQ(code, 1) << text;
+  EXPECT_NE(text.find("holds an earlier run's summary: give --overwrite"), std::string::npos)
+      << text;
+  text = run_evas("problem car-axis --rtol 1e-5 --overwrite --out " + ok_dir, code);
+  EXPECT_EQ(code, 0) << text;
   text = run_evas("problem car-axis --integrator cvode", code);  // a combination refused
   EXPECT_EQ(code, 1) << text;
   EXPECT_NE(text.find("formulation=penalty"), std::string::npos) << text;
