@@ -355,9 +355,17 @@ void JournalBearing::derivatives(double t, const MarkerMotion* m, Mat& D) const 
   D.block<3, 3>(3, 0) -= skew(F);
 }
 
-double JournalBearing::peak_pressure(const V2& e, const V2& ed, double om) const {
+double JournalBearing::friction_torque(const V2& e, double om, const V2& f, double weight) const {
+  const double c = p_.clearance, R = p_.radius, eps = e.norm() / c;
+  const double couette = 2.0 * M_PI * p_.viscosity * R * R * R * weight * p_.width * om /
+                         (c * std::sqrt(1.0 - eps * eps));
+  return -couette - 0.5 * (e.x() * f.y() - e.y() * f.x());
+}
+
+double JournalBearing::peak_pressure(const V2& e, const V2& ed, double om, double* angle) const {
   const double c = p_.clearance;
   const V2 W = ed - 0.5 * om * perp(e);
+  if (angle) *angle = 0.0;
   if (W.squaredNorm() == 0.0) return 0.0;
   const double phiW = std::atan2(W.y(), W.x());
   auto q = [&](double phi) {
@@ -422,14 +430,32 @@ double JournalBearing::peak_pressure(const V2& e, const V2& ed, double om) const
     }
     phi = next;
   }
-  qpeak = std::max(qpeak, q(phi));
+  const double qphi = q(phi);
+  if (angle) {
+    // the angle of the larger of the refined point and the best grid point
+    const double a = qphi >= qbest ? phi : phiW - 0.5 * M_PI + best * dphi;
+    *angle = std::remainder(a, 2.0 * M_PI);
+  }
+  qpeak = std::max(qpeak, qphi);
   // p = 6 eta x (B - x) q, largest at the mid-plane x = B/2.
   return 1.5 * p_.viscosity * p_.width * p_.width * qpeak;
 }
 
 std::vector<Channel> JournalBearing::channels() const {
-  return {{"fx", "N"},  {"fy", "N"},         {"mx", "N m"},  {"my", "N m"},
-          {"eps", "-"}, {"attitude", "rad"}, {"h_min", "m"}, {"p_max", "Pa"}};
+  return {{"fx", "N"},
+          {"fy", "N"},
+          {"mx", "N m"},
+          {"my", "N m"},
+          {"eps", "-"},
+          {"attitude", "rad"},
+          {"h_min", "m"},
+          {"p_max", "Pa"},
+          {"ex", "m"},
+          {"ey", "m"},
+          {"h_min_angle", "rad"},
+          {"p_max_angle", "rad"},
+          {"friction_torque", "N m"},
+          {"friction_power", "W"}};
 }
 
 void JournalBearing::channel_values(double t, const MarkerMotion* m, double* out) const {
@@ -440,12 +466,15 @@ void JournalBearing::channel_values(double t, const MarkerMotion* m, double* out
   V2 e, ed;
   double om;
   station_state(m, 0.0, e, ed, om);
-  double emax = 0.0;
+  double emax = 0.0, torque = 0.0;
+  V2 e_thin = e;  // eccentricity of the station with the thinnest film
   for (const auto& st : stations_) {
     V2 es, eds;
     double oms;
     station_state(m, st.s, es, eds, oms);
-    emax = std::max(emax, es.norm());
+    if (es.norm() > emax) emax = es.norm(), e_thin = es;
+    torque += friction_torque(es, oms, hydro(es, eds, oms, st.weight, false, p_.closed_form).f,
+                              st.weight);
   }
   out[0] = F.x();
   out[1] = F.y();
@@ -454,7 +483,12 @@ void JournalBearing::channel_values(double t, const MarkerMotion* m, double* out
   out[4] = e.norm() / p_.clearance;
   out[5] = std::atan2(e.y(), e.x());
   out[6] = p_.clearance - emax;
-  out[7] = peak_pressure(e, ed, om);
+  out[7] = peak_pressure(e, ed, om, &out[11]);
+  out[8] = e.x();
+  out[9] = e.y();
+  out[10] = std::atan2(e_thin.y(), e_thin.x());  // h = c - e . u is thinnest along e
+  out[12] = torque;
+  out[13] = -torque * om;  // the power the journal's spin loses to the film
 }
 
 ElementType journal_bearing_element_type() {

@@ -92,8 +92,22 @@ class JournalBearing : public Element {
   /// Hydrodynamic part only by the chosen method (no checks, no contact).
   FilmForce hydro(const Eigen::Vector2d& e, const Eigen::Vector2d& ed, double om, double weight,
                   bool derivs, bool closed_form) const;
-  /// Peak film pressure at the mid-plane for the state (e, ed, om) [Pa].
-  double peak_pressure(const Eigen::Vector2d& e, const Eigen::Vector2d& ed, double om) const;
+  /// Peak film pressure at the mid-plane for the state (e, ed, om) [Pa]; with
+  /// `angle`, its bearing angle phi (from the bearing marker's x axis towards
+  /// its y axis, in (-pi, pi]) [rad].
+  double peak_pressure(const Eigen::Vector2d& e, const Eigen::Vector2d& ed, double om,
+                       double* angle = nullptr) const;
+  /// Viscous friction torque on the journal about the bearing axis [N m] of a
+  /// station of weight `weight` (share of the width) with eccentricity e,
+  /// relative spin om and hydrodynamic film force f on the journal:
+  ///   T = -2 pi eta R^3 (weight B) om / (c sqrt(1 - eps^2)) - (e x f)_z / 2,
+  /// the Couette shear over the whole circumference (Petroff's law, with the
+  /// eccentric film) plus the pressure-driven part, which by parts is half the
+  /// moment of the film force about the bearing centre (Hamrock, Schmid,
+  /// Jacobson, Fundamentals of Fluid Film Lubrication, 2nd ed., Dekker 2004,
+  /// journal friction of the short bearing). Asperity contact is not included.
+  double friction_torque(const Eigen::Vector2d& e, double om, const Eigen::Vector2d& f,
+                         double weight) const;
 
  private:
   struct Station {

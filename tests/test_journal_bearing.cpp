@@ -307,7 +307,7 @@ TEST(JournalBearing, Declaration) {
   EXPECT_DOUBLE_EQ(jb->params().eps_max, 0.98);
   v.numbers["halves"] = {1.5};
   EXPECT_THROW(t.make("jb", {0, 1}, v), InputError);
-  EXPECT_EQ(jb->channels().size(), 8u);
+  EXPECT_EQ(jb->channels().size(), 14u);
 }
 
 // (6) Rigid rotor on two bearings: static equilibrium below the oil-whirl
@@ -354,6 +354,83 @@ TEST(JournalBearing, Channels) {
   std::printf("peak pressure %.6e Pa (scan %.6e Pa)\n", ch[7], pmax);
   EXPECT_NEAR(ch[7], pmax, 1e-6 * pmax);
   EXPECT_GE(ch[7], pmax);
+}
+
+// Friction torque on the journal against an independent integral of the film's
+// shear stress: with the film velocity u(y) = (1/2 eta) dp/ds (y^2 - y h) + U y/h
+// between the bearing (y = 0) and the journal (y = h, surface speed U = om R),
+// the shear on the journal is tau = eta U / h + (h / 2) dp/ds, and
+//   T = -R int_0^2pi int_0^B tau R dx dphi,
+// with int_0^B p dx = eta B^3 max(g, 0) / h^3 (p = 6 eta x (B - x) g / h^3,
+// g = W . u). The Couette part is taken over the whole circumference (Petroff;
+// at e = 0 it is Petroff's law T = -2 pi eta R^3 B om / c exactly), the
+// pressure part over the loaded half. Trapezoid rule on 400000 angles; the
+// element's closed form (the pressure part by parts, -(e x f)/2) must agree to
+// 1e-7. Also the channels: ex, ey, the angle of the thinnest film and of the peak
+// pressure (where p equals p_max, and a scan's best angle lies), friction power
+// = -T om.
+TEST(JournalBearing, FrictionTorqueMatchesTheShearIntegral) {
+  const JournalBearingParams p = base_params(true);
+  const JournalBearing jb = make_bearing(p);
+  const double c = p.clearance, R = p.radius, B = p.width, eta = p.viscosity, om = 400.0;
+  // Petroff at the centre
+  EXPECT_NEAR(jb.friction_torque(V2::Zero(), om, V2::Zero(), 1.0),
+              -2.0 * M_PI * eta * R * R * R * B * om / c, 1e-14 * eta * R * R * R * B * om / c);
+  const int n = 400000;
+  for (double eps : {0.2, 0.6, 0.9})
+    for (double sq : {0.0, 0.03, -0.1}) {
+      const V2 e = eps * c * V2(std::cos(1.0), std::sin(1.0));
+      const V2 ed = sq * V2(std::cos(2.5), std::sin(2.5));
+      const V2 W = ed - 0.5 * om * V2(-e.y(), e.x());
+      // Couette over the whole (periodic) circumference; the pressure part over the
+      // loaded half |phi - phi_W| <= pi/2 (g > 0), whose ends are kinks of p
+      double T = 0.0;
+      for (int i = 0; i < n; ++i) {
+        const double phi = 2.0 * M_PI * i / n;
+        const double h = c - e.dot(V2(std::cos(phi), std::sin(phi)));
+        T -= R * (eta * om * R / h * B) * R * (2.0 * M_PI / n);  // int_0^B eta U / h dx
+      }
+      const double phiW = std::atan2(W.y(), W.x());
+      for (int k = 0; k <= n; ++k) {
+        const double phi = phiW - 0.5 * M_PI + M_PI * k / n, wk = (k == 0 || k == n) ? 0.5 : 1.0;
+        const V2 u(std::cos(phi), std::sin(phi)), up(-u.y(), u.x());
+        const double h = c - e.dot(u), hp = -e.dot(up), g = W.dot(u), gp = W.dot(up);
+        // d/dphi of int_0^B p dx = eta B^3 g / h^3
+        const double dP = eta * B * B * B * (gp / (h * h * h) - 3.0 * g * hp / (h * h * h * h));
+        T -= R * (0.5 * h * dP / R) * R * wk * (M_PI / n);  // int_0^B (h/2) (1/R) dp/dphi dx
+      }
+      const V2 f = jb.hydro(e, ed, om, 1.0, false, true).f;
+      const double Tc = jb.friction_torque(e, om, f, 1.0);
+      std::printf("eps %.1f squeeze %5.2f: friction torque %.9e N m, shear integral %.9e N m\n",
+                  eps, sq, Tc, T);
+      EXPECT_NEAR(Tc, T, 1e-9 * std::abs(T)) << "eps " << eps << " sq " << sq;
+
+      MarkerMotion m[2];
+      m[1].p = Vec3(e.x(), e.y(), 0.0);
+      m[1].v = Vec3(ed.x(), ed.y(), 0.0);
+      m[1].w = Vec3(0, 0, om);
+      std::vector<double> ch(jb.channels().size());
+      ASSERT_EQ(ch.size(), 14u);
+      jb.channel_values(0, m, ch.data());
+      EXPECT_NEAR(ch[8], e.x(), 1e-15);
+      EXPECT_NEAR(ch[9], e.y(), 1e-15);
+      EXPECT_NEAR(ch[10], 1.0, 1e-12);  // the thinnest film lies along e
+      EXPECT_NEAR(ch[12], T, 1e-7 * std::abs(T));
+      EXPECT_NEAR(ch[13], -T * om, 1e-7 * std::abs(T * om));
+      // the peak pressure's angle: p there is p_max, and a scan finds its maximum there
+      const double a = ch[11];
+      const V2 ua(std::cos(a), std::sin(a));
+      const double ha = c - e.dot(ua);
+      EXPECT_NEAR(1.5 * eta * B * B * W.dot(ua) / (ha * ha * ha), ch[7], 1e-9 * ch[7]);
+      double best = 0.0, best_phi = 0.0;
+      for (int i = 0; i < n; ++i) {
+        const double phi = 2.0 * M_PI * i / n;
+        const V2 u(std::cos(phi), std::sin(phi));
+        const double h = c - e.dot(u), q = W.dot(u) / (h * h * h);
+        if (q > best) best = q, best_phi = phi;
+      }
+      EXPECT_NEAR(std::remainder(a - best_phi, 2.0 * M_PI), 0.0, 1e-4);
+    }
 }
 
 // The peak pressure (coarse scan, then safeguarded Newton on dq/dphi) against a
