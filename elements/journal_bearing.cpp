@@ -455,7 +455,9 @@ std::vector<Channel> JournalBearing::channels() const {
           {"h_min_angle", "rad"},
           {"p_max_angle", "rad"},
           {"friction_torque", "N m"},
-          {"friction_power", "W"}};
+          {"friction_power", "W"},
+          {"fx_journal", "N"},
+          {"fy_journal", "N"}};
 }
 
 void JournalBearing::channel_values(double t, const MarkerMotion* m, double* out) const {
@@ -489,6 +491,12 @@ void JournalBearing::channel_values(double t, const MarkerMotion* m, double* out
   out[10] = std::atan2(e_thin.y(), e_thin.x());  // h = c - e . u is thinnest along e
   out[12] = torque;
   out[13] = -torque * om;  // the power the journal's spin loses to the film
+  // the force on the journal in axes that turn with the journal (polar diagram
+  // on the journal): the bearing's axes at t0, turned by the journal's rotation
+  // about the bearing axis since t0, th = (psi_journal - psi_bearing) . a
+  const double th = (m[1].psi - m[0].psi).dot(R0.col(2)), ct = std::cos(th), st = std::sin(th);
+  out[14] = ct * F.x() + st * F.y();
+  out[15] = -st * F.x() + ct * F.y();
 }
 
 ElementType journal_bearing_element_type() {

@@ -307,7 +307,7 @@ TEST(JournalBearing, Declaration) {
   EXPECT_DOUBLE_EQ(jb->params().eps_max, 0.98);
   v.numbers["halves"] = {1.5};
   EXPECT_THROW(t.make("jb", {0, 1}, v), InputError);
-  EXPECT_EQ(jb->channels().size(), 14u);
+  EXPECT_EQ(jb->channels().size(), 16u);
 }
 
 // (6) Rigid rotor on two bearings: static equilibrium below the oil-whirl
@@ -354,6 +354,15 @@ TEST(JournalBearing, Channels) {
   std::printf("peak pressure %.6e Pa (scan %.6e Pa)\n", ch[7], pmax);
   EXPECT_NEAR(ch[7], pmax, 1e-6 * pmax);
   EXPECT_GE(ch[7], pmax);
+  // the load in the journal's axes: a journal turned by 1.1 rad more than the
+  // bearing about the bearing axis since t0 sees the bearing-frame force turned
+  // by -1.1 rad (hand rotation of (fx, fy))
+  m[0].psi = Vec3(0.0, 0.0, 0.4);
+  m[1].psi = m[0].psi + 1.1 * m[0].R.col(2);
+  jb.channel_values(0, m, ch.data());
+  EXPECT_NEAR(ch[14], std::cos(1.1) * F.x() + std::sin(1.1) * F.y(), 1e-12 * F.norm());
+  EXPECT_NEAR(ch[15], -std::sin(1.1) * F.x() + std::cos(1.1) * F.y(), 1e-12 * F.norm());
+  EXPECT_NEAR(std::hypot(ch[14], ch[15]), F.norm(), 1e-12 * F.norm());
 }
 
 // Friction torque on the journal against an independent integral of the film's
@@ -410,7 +419,7 @@ TEST(JournalBearing, FrictionTorqueMatchesTheShearIntegral) {
       m[1].v = Vec3(ed.x(), ed.y(), 0.0);
       m[1].w = Vec3(0, 0, om);
       std::vector<double> ch(jb.channels().size());
-      ASSERT_EQ(ch.size(), 14u);
+      ASSERT_EQ(ch.size(), 16u);
       jb.channel_values(0, m, ch.data());
       EXPECT_NEAR(ch[8], e.x(), 1e-15);
       EXPECT_NEAR(ch[9], e.y(), 1e-15);
