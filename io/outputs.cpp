@@ -59,6 +59,16 @@ std::vector<double> crank_angle_times(const Lof& lof, double t0, double t1, doub
   return times;
 }
 
+const std::vector<std::tuple<unsigned, const char*, const char*>>& marker_quantities() {
+  static const std::vector<std::tuple<unsigned, const char*, const char*>> q = {
+      {ChannelRequest::kPosition, "p", "m"},
+      {ChannelRequest::kVelocity, "v", "m/s"},
+      {ChannelRequest::kAcceleration, "a", "m/s^2"},
+      {ChannelRequest::kAngularVelocity, "w", "rad/s"},
+      {ChannelRequest::kAngularAcceleration, "al", "rad/s^2"}};
+  return q;
+}
+
 OutputSet::OutputSet(const OutputSpec& spec, System& system, double t_start, double t_end)
     : sys_(system) {
   Model& model = sys_.model();
@@ -76,12 +86,28 @@ OutputSet::OutputSet(const OutputSpec& spec, System& system, double t_start, dou
     for (long k = 0; k <= count; ++k) times_.push_back(std::min(t_end, start + k * spec.step));
   }
   for (const ChannelRequest& req : spec.channels) {
-    Source src{req.kind, req.index, static_cast<int>(channels_.size())};
+    Source src{req.kind, req.index, static_cast<int>(channels_.size()), 0u, false};
     switch (req.kind) {
       case ChannelRequest::Kind::Marker: {
         const std::string& m = model.markers().at(req.index).name;
-        for (const char* c : {"px", "py", "pz"}) channels_.push_back({m + "." + c, "m"});
-        for (const char* c : {"vx", "vy", "vz"}) channels_.push_back({m + "." + c, "m/s"});
+        // name prefix and unit per quantity, in the order of marker_quantities()
+        const char* suffix = req.local ? "_local" : "";
+        for (const auto& [bit, prefix, unit] : marker_quantities())
+          if (req.quantities & bit)
+            for (const char* axis : {"x", "y", "z"})
+              channels_.push_back({m + "." + prefix + axis + suffix, unit});
+        src.quantities = req.quantities;
+        src.local = req.local;
+        if (req.quantities &
+            (ChannelRequest::kAcceleration | ChannelRequest::kAngularAcceleration)) {
+          if (sys_.constraint_count() > 0)
+            throw InputError(
+                "output: marker '" + m +
+                "': acceleration channels are not available in a scene with joints (the "
+                "constraint forces G^T lambda are not in the accelerations yet); request "
+                "position, velocity or angular_velocity");
+          accelerations_ = true;
+        }
         break;
       }
       case ChannelRequest::Kind::Element: {
@@ -134,16 +160,26 @@ void OutputSet::values(double t, const double* q, const double* v, double* out,
   Model& model = sys_.model();
   // the channels' markers (with inertial elements every marker and the full
   // accelerations: those elements report the solved ones)
-  sys_.observe(t, q, v, markers_);
+  if (accelerations_)
+    sys_.observe_accelerations(t, q, v);  // every marker, with the modal accelerations
+  else
+    sys_.observe(t, q, v, markers_);
   if (crank_body_ >= 0) out[0] = crank_angle(t);
   for (const Source& src : sources_) {
     double* o = out + src.first;
     switch (src.kind) {
       case ChannelRequest::Kind::Marker: {
         const MarkerMotion& m = sys_.motion(src.index);
-        for (int a = 0; a < 3; ++a) {
-          o[a] = m.p[a];
-          o[3 + a] = m.v[a];
+        int k = 0;
+        for (const auto& [bit, prefix, unit] : marker_quantities()) {
+          if (!(src.quantities & bit)) continue;
+          const Vec3& x = bit == ChannelRequest::kPosition          ? m.p
+                          : bit == ChannelRequest::kVelocity        ? m.v
+                          : bit == ChannelRequest::kAcceleration    ? m.a
+                          : bit == ChannelRequest::kAngularVelocity ? m.w
+                                                                    : m.al;
+          const Vec3 y = src.local ? Vec3(m.R.transpose() * x) : x;
+          for (int a = 0; a < 3; ++a) o[k++] = y[a];
         }
         break;
       }

@@ -16,6 +16,7 @@
 // degrees (found by bracketing and bisection, so speed profiles work too).
 #pragma once
 
+#include <tuple>
 #include <vector>
 
 #include "io/scene.h"
@@ -50,9 +51,12 @@ class OutputSet {
  private:
   struct Source {
     ChannelRequest::Kind kind;
-    int index;  // marker, element or body
-    int first;  // first channel
+    int index;            // marker, element or body
+    int first;            // first channel
+    unsigned quantities;  // marker: ChannelRequest::Quantity bits
+    bool local;           // marker: components in its own axes
   };
+  bool accelerations_ = false;  // a marker's (angular) acceleration is asked for
   System& sys_;
   std::vector<Channel> channels_;
   std::vector<Source> sources_;
@@ -63,6 +67,11 @@ class OutputSet {
   std::vector<double> gbuf_, gvbuf_;
   std::vector<MarkerMotion> scratch_;
 };
+
+/// The quantities of a marker request in channel order: (bit, name prefix, unit):
+/// p [m], v [m/s], a [m/s^2], w [rad/s], al [rad/s^2]; channels are
+/// MARKER.<prefix><x|y|z>, with the suffix _local in the marker's own axes.
+const std::vector<std::tuple<unsigned, const char*, const char*>>& marker_quantities();
 
 /// Most output rows a grid may give (1e8: 8 GB per 10 channels).
 constexpr double kMaxOutputRows = 1e8;

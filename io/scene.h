@@ -19,10 +19,21 @@ namespace evas {
 /// One `output.channels` entry, resolved against the model.
 struct ChannelRequest {
   enum class Kind { Marker, Element, Modal };
+  /// What a marker request gives (bits): position, velocity, acceleration,
+  /// angular velocity, angular acceleration.
+  enum Quantity : unsigned {
+    kPosition = 1,
+    kVelocity = 2,
+    kAcceleration = 4,
+    kAngularVelocity = 8,
+    kAngularAcceleration = 16
+  };
   Kind kind = Kind::Marker;
-  std::string name;  ///< marker, element or body name
-  int index = -1;    ///< into Model::markers(), elements() or bodies()
-  int line = 0;      ///< line in the scene file (1-based)
+  std::string name;                             ///< marker, element or body name
+  int index = -1;                               ///< into Model::markers(), elements() or bodies()
+  int line = 0;                                 ///< line in the scene file (1-based)
+  unsigned quantities = kPosition | kVelocity;  ///< marker requests
+  bool local = false;  ///< marker requests: components in the marker's own axes
 };
 
 struct OutputSpec {

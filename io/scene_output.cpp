@@ -114,14 +114,45 @@ OutputSpec SceneReader::read_output(const Node& n, const Model& model, double t_
     for (std::size_t i = 0; i < ch.size(); ++i) {
       const Node c = ch[i];
       const std::string ci = "output.channels[" + std::to_string(i) + "]";
-      check_keys(c, ci, {"marker", "element", "modal"});
-      if (c.size() != 1) fail(c, ci, "give exactly one of 'marker', 'element' and 'modal'");
+      check_keys(c, ci, {"marker", "element", "modal", "quantities", "frame"});
+      const std::size_t extra = (c["quantities"] ? 1 : 0) + (c["frame"] ? 1 : 0);
+      if (extra && !c["marker"])
+        fail(c, ci, "'quantities' and 'frame' belong to a marker request ({marker: NAME, ...})");
+      if (c.size() != 1 + extra) fail(c, ci, "give exactly one of 'marker', 'element' and 'modal'");
       ChannelRequest req;
       req.line = c.Mark().line + 1;
       std::vector<std::string> names;
       if (c["marker"]) {
         req.kind = ChannelRequest::Kind::Marker;
         req.name = text(c["marker"], ci, "marker");
+        if (const Node qs = c["quantities"]) {
+          if (!qs.IsSequence() || qs.size() == 0)
+            fail(qs, ci,
+                 "'quantities' must be a list of position, velocity, acceleration, "
+                 "angular_velocity, angular_acceleration");
+          req.quantities = 0;
+          const std::vector<std::pair<std::string, unsigned>> known = {
+              {"position", ChannelRequest::kPosition},
+              {"velocity", ChannelRequest::kVelocity},
+              {"acceleration", ChannelRequest::kAcceleration},
+              {"angular_velocity", ChannelRequest::kAngularVelocity},
+              {"angular_acceleration", ChannelRequest::kAngularAcceleration}};
+          for (const Node& q : qs) {
+            const std::string w = text(q, ci, "quantities");
+            unsigned bit = 0;
+            for (const auto& [word, b] : known)
+              if (word == w) bit = b;
+            if (!bit)
+              fail(q, ci,
+                   "unknown quantity '" + w +
+                       "' (known: position, velocity, acceleration, angular_velocity, "
+                       "angular_acceleration)");
+            if (req.quantities & bit) fail(q, ci, "quantity '" + w + "' is given twice");
+            req.quantities |= bit;
+          }
+        }
+        if (const Node fr = c["frame"])
+          req.local = choice(fr, ci, "frame", {"ground", "marker"}) == "marker";
         for (std::size_t k = 0; k < model.markers().size(); ++k) {
           names.push_back(model.markers()[k].name);
           if (names.back() == req.name) req.index = static_cast<int>(k);
@@ -148,8 +179,11 @@ OutputSpec SceneReader::read_output(const Node& n, const Model& model, double t_
         fail(c.begin()->second, ci,
              std::string("no ") + what + " named '" + req.name + "' (known: " + join(names) + ")");
       }
+      // a marker may be asked for once in ground and once in its own axes
       const auto [at, fresh] =
-          requested.emplace(std::make_pair(static_cast<int>(req.kind), req.name), i);
+          requested.emplace(std::make_pair(static_cast<int>(req.kind),
+                                           req.name + (req.local ? " (marker axes)" : "")),
+                            i);
       if (!fresh)
         fail(c, ci,
              "repeats output.channels[" + std::to_string(at->second) + "] (" +

@@ -86,6 +86,11 @@ class System : public Problem {
   /// channels read); the others are then not current. With inertial elements,
   /// every marker as observe().
   void observe(double t, const double* q, const double* v, const std::vector<int>& markers);
+  /// Marker motions with the full accelerations of every marker: qdd = -f
+  /// solved (one force evaluation), the modal part added to MarkerMotion::a and
+  /// al. For the acceleration output channels; the unconstrained part only
+  /// (with joints, G^T lambda is not in f).
+  void observe_accelerations(double t, const double* q, const double* v);
   /// Total rank of the inertial elements (0: M = I).
   int inertia_rank() const { return rank_; }
   const MarkerMotion& motion(int marker) const { return motion_[marker]; }

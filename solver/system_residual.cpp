@@ -259,6 +259,10 @@ void System::observe(double t, const double* q, const double* v) {
     update_markers(t, q, v);
     return;
   }
+  observe_accelerations(t, q, v);
+}
+
+void System::observe_accelerations(double t, const double* q, const double* v) {
   force_impl(t, q, v, scratch_f_.data());  // qdd = -f; leaves the LOF and motion_ current
   const auto& markers = model_.markers();
   const auto& bodies = model_.bodies();

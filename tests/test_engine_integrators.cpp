@@ -48,8 +48,9 @@ Channels run(const std::string& spec, double t_end) {
   std::vector<int> cols;
   for (int c = 0; c < out.size(); ++c) {
     const std::string& n = out.channels()[static_cast<std::size_t>(c)].name;
-    if (n.rfind("main", 0) == 0 &&
-        (n.find(".fx") != std::string::npos || n.find(".fy") != std::string::npos))
+    const auto dot = n.rfind('.');  // main<k>.fx and .fy exactly (not .fx_journal)
+    if (n.rfind("main", 0) == 0 && dot != std::string::npos &&
+        (n.substr(dot) == ".fx" || n.substr(dot) == ".fy"))
       cols.push_back(c);
   }
   EXPECT_EQ(cols.size(), 10u);
