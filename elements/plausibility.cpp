@@ -72,96 +72,40 @@ std::vector<PlausibleRange> make_table() {
   };
 }
 
-const char* si_unit(Quantity q) {
-  switch (q) {
-    case Q::Length:
-      return "m";
-    case Q::Speed:
-      return "rad/s";
-    case Q::Pressure:
-      return "Pa";
-    case Q::Viscosity:
-      return "Pa s";
-    case Q::Mass:
-      return "kg";
-    case Q::Stiffness:
-      return "N/m";
-    case Q::Damping:
-      return "N s/m";
-    case Q::Force:
-      return "N";
-    case Q::Modulus:
-      return "Pa";
-    case Q::Density:
-      return "kg/m^3";
-    case Q::Area:
-      return "m^2";
-  }
-  return "";
-}
-
-// "lengths are in metres", for the warning's explanation.
-const char* unit_rule(Quantity q) {
-  switch (q) {
-    case Q::Length:
-      return "lengths are in metres";
-    case Q::Speed:
-      return "speeds are in rad/s";
-    case Q::Pressure:
-      return "pressures are in Pa";
-    case Q::Viscosity:
-      return "viscosities are in Pa s";
-    case Q::Mass:
-      return "masses are in kg";
-    case Q::Stiffness:
-      return "stiffnesses are in N/m";
-    case Q::Damping:
-      return "damping is in N s/m";
-    case Q::Force:
-      return "forces are in N";
-    case Q::Modulus:
-      return "moduli are in Pa";
-    case Q::Density:
-      return "densities are in kg/m^3";
-    case Q::Area:
-      return "areas are in m^2";
-  }
-  return "";
-}
-
 struct Slip {
   const char* unit;
   double factor;  ///< SI value of 1 unit
 };
 
-// The units a value of this quantity is likely typed in by mistake.
-std::vector<Slip> slips(Quantity q) {
-  switch (q) {
-    case Q::Length:
-      return {{"mm", 1e-3}, {"um", 1e-6}, {"cm", 1e-2}};
-    case Q::Speed:
-      return {{"rpm", 2.0 * M_PI / 60.0}};
-    case Q::Pressure:
-      return {{"bar", 1e5}, {"MPa", 1e6}, {"kPa", 1e3}};
-    case Q::Viscosity:
-      return {{"mPa s (cP)", 1e-3}};
-    case Q::Mass:
-      return {{"g", 1e-3}, {"t", 1e3}};
-    case Q::Stiffness:
-      return {{"N/mm", 1e3}, {"kN/mm", 1e6}};
-    case Q::Damping:
-      return {{"N s/mm", 1e3}};
-    case Q::Force:
-      return {{"kN", 1e3}};
-    case Q::Modulus:
-      return {{"MPa (N/mm^2)", 1e6}, {"GPa", 1e9}};
-    case Q::Density:
-      return {{"g/cm^3", 1e3}, {"t/mm^3", 1e12}};
-    case Q::Area:
-      return {{"mm^2", 1e-6}, {"cm^2", 1e-4}};
-  }
-  return {};
+// What the messages say of a quantity: its SI unit, the rule ("lengths are in
+// metres") and the units a value of it is likely typed in by mistake.
+struct UnitFacts {
+  const char* unit;
+  const char* rule;
+  std::vector<Slip> slips;
+};
+
+const UnitFacts& facts(Quantity q) {
+  static const std::vector<UnitFacts> table = {
+      // in the order of enum class Quantity
+      {"m", "lengths are in metres", {{"mm", 1e-3}, {"um", 1e-6}, {"cm", 1e-2}}},
+      {"rad/s", "speeds are in rad/s", {{"rpm", 2.0 * M_PI / 60.0}}},
+      {"Pa", "pressures are in Pa", {{"bar", 1e5}, {"MPa", 1e6}, {"kPa", 1e3}}},
+      {"Pa s", "viscosities are in Pa s", {{"mPa s (cP)", 1e-3}}},
+      {"kg", "masses are in kg", {{"g", 1e-3}, {"t", 1e3}}},
+      {"N/m", "stiffnesses are in N/m", {{"N/mm", 1e3}, {"kN/mm", 1e6}}},
+      {"N s/m", "damping is in N s/m", {{"N s/mm", 1e3}}},
+      {"N", "forces are in N", {{"kN", 1e3}}},
+      {"Pa", "moduli are in Pa", {{"MPa (N/mm^2)", 1e6}, {"GPa", 1e9}}},
+      {"kg/m^3", "densities are in kg/m^3", {{"g/cm^3", 1e3}, {"t/mm^3", 1e12}}},
+      {"m^2", "areas are in m^2", {{"mm^2", 1e-6}, {"cm^2", 1e-4}}},
+  };
+  return table.at(static_cast<std::size_t>(q));
 }
+
+const char* si_unit(Quantity q) { return facts(q).unit; }
+const char* unit_rule(Quantity q) { return facts(q).rule; }
+const std::vector<Slip>& slips(Quantity q) { return facts(q).slips; }
 
 bool in_range(const PlausibleRange& r, double x) {
   const double a = r.magnitude ? std::abs(x) : x;
@@ -219,8 +163,7 @@ std::string plausibility_warning(const PlausibleRange& r, double x) {
   std::string w = r.key + " = " + num(x) + " " + si_unit(r.quantity) +
                   " is outside the plausible range of " + r.what + ", " + plausible_text(r) + ": " +
                   unit_rule(r.quantity);
-  const std::vector<Slip> candidates = slips(r.quantity);
-  if (const Slip* s = best_slip(r, x, candidates))
+  if (const Slip* s = best_slip(r, x, slips(r.quantity)))
     return w + " (" + num(x) + " " + s->unit + " would be " + num(x * s->factor) + " " +
            si_unit(r.quantity) + ")";
   return w + " (no common unit slip explains it: check the value)";
@@ -260,8 +203,7 @@ void check_plausible(const ElementType& type, const ParamValues& values, const s
       std::string msg = "clearance " + num(c) + " m is not smaller than the journal radius " +
                         num(R) +
                         " m: the journal cannot sit in its bearing; clearances are in metres";
-      const std::vector<Slip> candidates = slips(Q::Length);
-      if (const Slip* s = best_slip(*plausible_range(type.type, "clearance"), c, candidates))
+      if (const Slip* s = best_slip(*plausible_range(type.type, "clearance"), c, slips(Q::Length)))
         msg += " (" + num(c) + " " + s->unit + " is " + num(c * s->factor) + " m)";
       throw InputError(where + ": " + msg);
     }
@@ -317,8 +259,7 @@ std::string peak_pressure_warning(double peak, const std::string& table) {
   std::string w = "the cylinder pressure " + table + " peaks at " + num(peak) +
                   " Pa, outside the plausible " + num(kMinPeakPressure) + " .. " +
                   num(kMaxPeakPressure) + " Pa of a cylinder (5 to 400 bar): pressures are in Pa";
-  const std::vector<Slip> candidates = slips(Q::Pressure);
-  if (const Slip* s = best_slip(r, peak, candidates))
+  if (const Slip* s = best_slip(r, peak, slips(Q::Pressure)))
     return w + " (a table in " + s->unit + " would peak at " + num(peak * s->factor) + " Pa)";
   return w;
 }
