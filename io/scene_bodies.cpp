@@ -32,7 +32,7 @@ void SceneReader::read_body(const Node& b, std::size_t i, Model& model) {
   const double zeta = zeta_node ? number_in(zeta_node, item, "damping_ratio", 0.0, 10.0) : 0.0;
   if (modes) check_keys(modes, item + " modes", {"rigid", "elastic", "max_frequency"});
 
-  std::shared_ptr<ModalBody> data;
+  std::shared_ptr<const ModalBody> data;
   const Node tol_node = b["check_tolerance"];
   if (tol_node && gen)
     fail(tol_node, item, "'check_tolerance' applies to body files ('file') only");
@@ -44,29 +44,39 @@ void SceneReader::read_body(const Node& b, std::size_t i, Model& model) {
     const std::string rel = text(file, item, "file");
     std::filesystem::path p(rel);
     if (p.is_relative()) p = dir_ / p;
-    ModalBody body;
+    // everything the body made of the file depends on besides the file
+    YAML::Emitter modes_text;
+    if (modes) modes_text << modes;
+    const std::string recipe = name + "\n" + modes_text.c_str() + "\n" +
+                               (zeta_node ? number_text(zeta) : "-") + "\n" +
+                               number_text(tolerance);
+    auto derive = [&](ModalBody body) {
+      // The modal contract (orthonormal modes, rigid modes rigid, ...) of the
+      // file as written, before any truncation.
+      const ModalContract contract = check_modal_contract(body, tolerance);
+      if (const ModalCheck* f = contract.first_failure())
+        fail(
+            file, item,
+            body.source + ": " + describe_failure(*f) +
+                (f->relative ? "; 'check_tolerance' (default " + number_text(kModalCheckTolerance) +
+                                   ") relaxes the relative checks"
+                             : std::string()));
+      body.name = name;
+      body = truncate(std::move(body), modes, item);
+      if (zeta_node)
+        for (int k = 0; k < body.num_modes(); ++k)
+          body.damping[k] = body.kinds[k] == ModeKind::Elastic
+                                ? 2.0 * zeta * std::sqrt(std::max(0.0, body.eigenvalues[k]))
+                                : 0.0;
+      return body;
+    };
     try {
-      body = read_body_file_cached(p.string());
+      data = derived_body_cached(p.string(), recipe, derive);
     } catch (const InputError& e) {
-      fail(file, item, e.what());
+      const std::string msg = e.what();
+      if (msg.rfind(file_ + ":", 0) == 0) throw;  // said with its place already
+      fail(file, item, msg);
     }
-    // The modal contract (orthonormal modes, rigid modes rigid, ...) of the
-    // file as written, before any truncation.
-    const ModalContract contract = check_modal_contract(body, tolerance);
-    if (const ModalCheck* f = contract.first_failure())
-      fail(file, item,
-           body.source + ": " + describe_failure(*f) +
-               (f->relative ? "; 'check_tolerance' (default " + number_text(kModalCheckTolerance) +
-                                  ") relaxes the relative checks"
-                            : std::string()));
-    body.name = name;
-    body = truncate(std::move(body), modes, item);
-    if (zeta_node)
-      for (int k = 0; k < body.num_modes(); ++k)
-        body.damping[k] = body.kinds[k] == ModeKind::Elastic
-                              ? 2.0 * zeta * std::sqrt(std::max(0.0, body.eigenvalues[k]))
-                              : 0.0;
-    data = std::make_shared<ModalBody>(std::move(body));
   }
   if (data->num_modes() == 0) fail(modes ? modes : b, item, "no modes left after truncation");
 

@@ -2,6 +2,7 @@
 // on a node set or list) and the joints between them.
 #include <set>
 
+#include "io/body_cache.h"
 #include "io/scene_reader.h"
 
 namespace evas::scene_detail {
@@ -71,7 +72,8 @@ void SceneReader::read_marker(const Node& m, std::size_t i, Model& model) {
         Vec3 centre;
         const bool has_centre = bool(m["centre"]);
         if (has_centre) centre = marker_centre(m["centre"], item, data, ids);
-        marker = make_set_marker(name, body, data, ids, weights, has_centre ? &centre : nullptr);
+        marker = set_marker_cached(name, body, model.bodies()[body].data, ids, weights,
+                                   has_centre ? &centre : nullptr);
       }
     } catch (const InputError& e) {
       const std::string msg = e.what();

@@ -43,15 +43,26 @@ Marker make_set_marker(const std::string& name, int body, const ModalBody& b,
   centroid /= wsum;
   // Least-squares fit of a rigid motion (u, theta) about the weighted centroid:
   // u = sum w u_i / sum w, theta = J^+ sum w d_i x (u_i - u), d_i = s_i - centroid.
-  Mat3X Bu = Mat3X::Zero(3, n);
-  for (std::size_t k = 0; k < idx.size(); ++k)
-    Bu += (w[k] / wsum) * b.modes.middleRows(3 * idx[k], 3);
+  std::vector<Vec3> d(idx.size());
   Mat3 J = Mat3::Zero();
-  Mat3X T = Mat3X::Zero(3, n);
   for (std::size_t k = 0; k < idx.size(); ++k) {
-    const Vec3 d = b.s.row(idx[k]).transpose() - centroid;
-    J += w[k] * (d.squaredNorm() * Mat3::Identity() - d * d.transpose());
-    T += w[k] * skew(d) * (b.modes.middleRows(3 * idx[k], 3) - Bu);
+    d[k] = b.s.row(idx[k]).transpose() - centroid;
+    J += w[k] * (d[k].squaredNorm() * Mat3::Identity() - d[k] * d[k].transpose());
+  }
+  // Bu = sum (w/wsum) u_i and T = sum w d_i x (u_i - Bu), one mode at a time:
+  // the shapes are stored by mode (column), so each sum reads one column in
+  // node order instead of striding across all columns per node.
+  Mat3X Bu(3, n), T(3, n);
+  for (int j = 0; j < n; ++j) {
+    const double* col = b.modes.col(j).data();
+    Vec3 bu = Vec3::Zero();
+    for (std::size_t k = 0; k < idx.size(); ++k)
+      bu += (w[k] / wsum) * Eigen::Map<const Vec3>(col + 3 * static_cast<long>(idx[k]));
+    Vec3 t = Vec3::Zero();
+    for (std::size_t k = 0; k < idx.size(); ++k)
+      t += w[k] * d[k].cross(Eigen::Map<const Vec3>(col + 3 * static_cast<long>(idx[k])) - bu);
+    Bu.col(j) = bu;
+    T.col(j) = t;
   }
   Eigen::SelfAdjointEigenSolver<Mat3> es(J);
   const double lmax = es.eigenvalues().maxCoeff();

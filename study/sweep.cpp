@@ -3,6 +3,7 @@
 
 #include <sys/resource.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -69,6 +70,17 @@ std::vector<int> channels_by_name(const SceneInfo& info, const std::vector<std::
   return idx;
 }
 
+// Several workers: the tasks with the most output rows first (on a crank-angle
+// grid the rows, like the steps, grow with the speed; on a time grid they are
+// equal and the order stays), so that the costliest runs do not start last and
+// leave one worker running alone at the end: longest processing time first,
+// Graham (1969), SIAM J. Appl. Math. 17(2), 416-429.
+void longest_first(std::vector<int>& todo, const std::vector<std::size_t>& rows) {
+  std::stable_sort(todo.begin(), todo.end(), [&](int a, int b) {
+    return rows[static_cast<std::size_t>(a)] > rows[static_cast<std::size_t>(b)];
+  });
+}
+
 }  // namespace
 
 SweepResult sweep(const Options& opt, const SweepOptions& so) {
@@ -130,6 +142,7 @@ SweepResult sweep(const Options& opt, const SweepOptions& so) {
 
   // every point's scene must read and give the same channels: checked before any run
   std::vector<TaskSpec> tasks;
+  std::vector<std::size_t> output_rows;  // per task: its cost estimate
   for (std::size_t p = 0; p < points.size(); ++p) {
     std::vector<std::string> assign;
     std::string where = "--sweep point " + std::to_string(p);
@@ -140,9 +153,12 @@ SweepResult sweep(const Options& opt, const SweepOptions& so) {
     where += ")";
     SceneSource src;
     std::vector<int> idx;
+    std::size_t rows = 0;
     try {
       src = edited(s.src, assign, "--sweep");
-      idx = channels_by_name(probe_scene(src), s.names);
+      const SceneInfo info = probe_scene(src);
+      idx = channels_by_name(info, s.names);
+      rows = info.times.size();
     } catch (const InputError& e) {
       throw InputError(where + ": " + e.what());
     }
@@ -154,6 +170,7 @@ SweepResult sweep(const Options& opt, const SweepOptions& so) {
       t.repeats = opt.repeats;
       t.max_wall = opt.max_wall;
       tasks.push_back(std::move(t));
+      output_rows.push_back(rows);
       SweepTask st;
       st.point = static_cast<int>(p);
       st.case_index = static_cast<int>(c);
@@ -227,6 +244,7 @@ SweepResult sweep(const Options& opt, const SweepOptions& so) {
     if (!so.merge) todo.push_back(static_cast<int>(k));
   }
   TaskRunner& runner = runner_of(opt);
+  if (runner.width() > 1) longest_first(todo, output_rows);
   res.runner = so.merge ? "merged from points/" : runner.describe();
   say(opt, "evas study sweep: scene '" + s.info.name + "', " + std::to_string(points.size()) +
                " points x " + std::to_string(res.cases.size()) + " case(s), " +
