@@ -1,5 +1,9 @@
 // evas spectrum RESULTS.h5 --channel NAME: order spectrum of a channel of a run
-// on the crank-angle grid (post/order_spectrum.h).
+// on the crank-angle grid (post/order_spectrum.h), or with --time its spectrum
+// over time: amplitude and PSD with a named window, optionally Welch-averaged
+// segments and third-octave bands (post/time_spectrum.h).
+#include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <iomanip>
 #include <iostream>
@@ -8,19 +12,119 @@
 #include "io/results.h"
 #include "model/types.h"
 #include "post/order_spectrum.h"
+#include "post/time_spectrum.h"
 
 namespace evas::cli {
 
+namespace {
+
+std::ofstream open_csv(const std::string& path) {
+  std::ofstream f(path);
+  if (!f) throw InputError(path + ": cannot write");
+  f << std::setprecision(12);
+  return f;
+}
+
+void order_mode(const ResultsData& d, const std::string& path, int ic, int cycles, double cycle,
+                double max_order, const std::string& csv) {
+  int ia = -1;
+  for (std::size_t i = 0; i < d.names.size(); ++i)
+    if (d.names[i] == "crank_angle") ia = static_cast<int>(i);
+  if (ia < 0)
+    throw InputError(path +
+                     ": no crank_angle channel (run the scene with output grid crank-angle, or "
+                     "give --time for a spectrum over time)");
+  std::vector<double> th(d.values.rows()), y(d.values.rows());
+  for (Eigen::Index r = 0; r < d.values.rows(); ++r) {
+    th[r] = d.values(r, ia);
+    y[r] = d.values(r, ic);
+  }
+  const OrderSpectrum s = order_spectrum(th, y, cycles, cycle, max_order);
+  std::cout << "order spectrum of " << d.names[ic] << " [" << d.units[ic] << "], " << s.cycles
+            << " cycles of " << cycle << " deg\n  order     amplitude     phase [rad]\n";
+  for (std::size_t k = 0; k < s.order.size(); ++k)
+    std::cout << std::setw(7) << s.order[k] << std::setw(14) << std::setprecision(6)
+              << s.amplitude[k] << std::setw(14) << s.phase[k] << "\n";
+  if (!csv.empty()) {
+    std::ofstream f = open_csv(csv);
+    f << "order,amplitude[" << d.units[ic] << "],phase[rad]\n";
+    for (std::size_t k = 0; k < s.order.size(); ++k)
+      f << s.order[k] << "," << s.amplitude[k] << "," << s.phase[k] << "\n";
+  }
+}
+
+void time_mode(const ResultsData& d, int ic, const TimeSpectrumOptions& o, double segment_s,
+               double max_f, const std::string& bands, const std::string& csv) {
+  std::vector<double> y(d.values.rows());
+  for (Eigen::Index r = 0; r < d.values.rows(); ++r) y[r] = d.values(r, ic);
+  TimeSpectrumOptions opt = o;
+  if (segment_s > 0.0) {
+    if (d.time.size() < 2) throw InputError("--segment: the record has fewer than 2 samples");
+    const double dt = (d.time.back() - d.time.front()) / static_cast<double>(d.time.size() - 1);
+    opt.segment = std::lround(segment_s / dt);
+  }
+  const TimeSpectrum s = time_spectrum(d.time, y, opt);
+  const std::string& unit = d.units[ic];
+  const std::string u = unit.empty() ? "1" : unit;
+  std::cout << "spectrum over time of " << d.names[ic] << " [" << u << "], t = " << s.t0 << " .. "
+            << s.t1 << " s, " << o.window << " window, " << s.segments << " segment(s) of "
+            << s.samples << " samples, df = " << s.df << " Hz, noise bandwidth " << s.enbw
+            << " Hz\n";
+  if (!bands.empty()) {
+    std::cout << "  third-octave band [Hz]            rms [" << u << "]   bins\n";
+    for (const Band& b : third_octave_bands(s)) {
+      std::cout << std::setw(10) << std::setprecision(5) << b.centre << "  (" << std::setw(8)
+                << b.lower << " .. " << std::setw(8) << b.upper << ")  " << std::setw(13)
+                << std::setprecision(6) << b.rms << std::setw(7) << b.bins;
+      std::cout << (b.bins == 0 ? "   no bin: longer --segment or window\n" : "\n");
+    }
+  } else {
+    std::cout << "  frequency [Hz]   amplitude [" << u << "]   PSD [" << u << "^2/Hz]\n";
+    for (std::size_t k = 0; k < s.frequency.size(); ++k) {
+      if (max_f > 0.0 && s.frequency[k] > max_f) break;
+      std::cout << std::setw(16) << std::setprecision(6) << s.frequency[k] << std::setw(16)
+                << s.amplitude[k] << std::setw(18) << s.psd[k] << "\n";
+    }
+  }
+  if (!csv.empty()) {
+    std::ofstream f = open_csv(csv);
+    if (!bands.empty()) {
+      f << "centre[Hz],lower[Hz],upper[Hz],rms[" << u << "],bins\n";
+      for (const Band& b : third_octave_bands(s))
+        f << b.centre << "," << b.lower << "," << b.upper << "," << b.rms << "," << b.bins << "\n";
+    } else {
+      f << "frequency[Hz],amplitude[" << u << "],psd[" << u << "^2/Hz]\n";
+      for (std::size_t k = 0; k < s.frequency.size(); ++k) {
+        if (max_f > 0.0 && s.frequency[k] > max_f) break;
+        f << s.frequency[k] << "," << s.amplitude[k] << "," << s.psd[k] << "\n";
+      }
+    }
+  }
+}
+
+}  // namespace
+
 int cmd_spectrum(const std::vector<std::string>& args) {
   int cycles = 0;
-  double cycle = 720.0, max_order = 12.0;
+  double cycle = 720.0, max_order = 12.0, segment = 0.0, max_f = 0.0;
+  TimeSpectrumOptions t;
+  std::string bands;
   po::options_description opts(
-      "usage: evas spectrum RESULTS.h5 --channel NAME [--cycles N] [--csv FILE]\n\n"
+      "usage: evas spectrum RESULTS.h5 --channel NAME [--cycles N] [--csv FILE]\n"
+      "       evas spectrum RESULTS.h5 --channel NAME --time [--window W] [--from T0]\n"
+      "                     [--to T1] [--segment S] [--overlap F] [--bands third-octave]\n\n"
       "Order spectrum of one output channel over whole engine cycles taken from the end\n"
       "of the record: by default every whole cycle, the start-up transient included; give\n"
       "--cycles N for the last N only. The run must use the crank-angle output grid\n"
       "(its results carry the channel crank_angle). Orders are harmonics of the crank\n"
       "rotation in steps of 360/cycle (0.5 for a four-stroke cycle).\n\n"
+      "With --time: the spectrum over time of the samples in [--from, --to] (a uniform\n"
+      "time grid), single-sided, in the channel's unit: the peak amplitude (a sinusoid of\n"
+      "amplitude a at a bin frequency reads a under every window) and the power spectral\n"
+      "density [unit^2/Hz]; each segment's mean is removed before the window. --segment S\n"
+      "averages overlapping segments of S seconds (Welch); --bands third-octave sums the\n"
+      "PSD into third-octave bands (IEC 61260-1 base-10 mid-band frequencies) and prints\n"
+      "each band's RMS value.\n\n"
       "options");
   opts.add_options()("help,h", "show this help")("channel", po::value<std::string>(),
                                                  "channel name, e.g. main1.fy")(
@@ -28,13 +132,35 @@ int cmd_spectrum(const std::vector<std::string>& args) {
       "cycles analysed, >= 1 (default: every whole cycle of the record)")(
       "cycle", po::value<double>(&cycle)->default_value(720.0), "cycle length [deg]")(
       "max-order", po::value<double>(&max_order)->default_value(12.0), "highest order listed")(
-      "csv", po::value<std::string>(), "write order,amplitude,phase to this file");
+      "time", "spectrum over time instead of over engine orders")(
+      "window", po::value<std::string>(&t.window)->default_value("hann"),
+      "--time: rectangular, hann or flattop (flattop: amplitudes between bins)")(
+      "from", po::value<double>(&t.t0), "--time: first time used [s] (default: the start)")(
+      "to", po::value<double>(&t.t1), "--time: last time used [s] (default: the end)")(
+      "segment", po::value<double>(&segment),
+      "--time: segment length [s] for averaging (default: the whole window, one segment)")(
+      "overlap", po::value<double>(&t.overlap)->default_value(0.5),
+      "--time: overlap of the segments, in [0, 1)")("max-frequency", po::value<double>(&max_f),
+                                                    "--time: highest frequency listed [Hz]")(
+      "bands", po::value<std::string>(&bands), "--time: third-octave (band RMS values)")(
+      "csv", po::value<std::string>(),
+      "write the table to this file (order,amplitude,phase or frequency,amplitude,psd "
+      "or the bands)");
   po::variables_map vm;
   if (parse_args(args, opts, {"results"}, vm)) return 0;
   if (!vm.count("results") || !vm.count("channel")) {
     std::cerr << "evas spectrum: need RESULTS.h5 and --channel NAME\n" << opts << "\n";
     return 1;
   }
+  const bool over_time = vm.count("time") > 0;
+  for (const char* k : {"from", "to", "segment", "max-frequency", "bands"})
+    if (vm.count(k) && !over_time)
+      throw InputError(std::string("--") + k + " applies to a spectrum over time: add --time");
+  for (const char* k : {"window", "overlap"})
+    if (!vm[k].defaulted() && !over_time)
+      throw InputError(std::string("--") + k + " applies to a spectrum over time: add --time");
+  if (over_time && vm.count("cycles"))
+    throw InputError("--cycles applies to the order spectrum: leave out --time");
   if (vm.count("cycles") && cycles < 1)
     throw InputError("--cycles " + std::to_string(cycles) +
                      ": give a number of cycles >= 1 (leave it out for every whole cycle)");
@@ -42,36 +168,30 @@ int cmd_spectrum(const std::vector<std::string>& args) {
     throw InputError("--cycle must be > 0 and <= 1e6 deg (720 for a four-stroke engine)");
   if (!(max_order >= 0.0 && max_order <= 1e6))
     throw InputError("--max-order must be >= 0 and <= 1e6");
+  if (vm.count("segment") && !(segment > 0.0 && std::isfinite(segment)))
+    throw InputError("--segment must be a positive number of seconds");
+  if (vm.count("max-frequency") && !(max_f > 0.0))
+    throw InputError("--max-frequency must be > 0 Hz");
+  {
+    const auto& w = spectrum_windows();
+    if (std::find(w.begin(), w.end(), t.window) == w.end())
+      throw InputError("--window '" + t.window +
+                       "': the windows known are rectangular, hann, flattop");
+  }
+  if (vm.count("bands") && bands != "third-octave")
+    throw InputError("--bands '" + bands + "': the bands known are third-octave");
   const std::string path = vm["results"].as<std::string>();
   const std::string name = vm["channel"].as<std::string>();
   const ResultsData d = read_results(path);
-  int ia = -1, ic = -1;
-  for (std::size_t i = 0; i < d.names.size(); ++i) {
-    if (d.names[i] == "crank_angle") ia = static_cast<int>(i);
+  int ic = -1;
+  for (std::size_t i = 0; i < d.names.size(); ++i)
     if (d.names[i] == name) ic = static_cast<int>(i);
-  }
-  if (ia < 0)
-    throw InputError(path +
-                     ": no crank_angle channel (run the scene with output grid crank-angle)");
   if (ic < 0) throw InputError(path + ": no channel '" + name + "'");
-  std::vector<double> th(d.values.rows()), y(d.values.rows());
-  for (Eigen::Index r = 0; r < d.values.rows(); ++r) {
-    th[r] = d.values(r, ia);
-    y[r] = d.values(r, ic);
-  }
-  const OrderSpectrum s = order_spectrum(th, y, cycles, cycle, max_order);
-  std::cout << "order spectrum of " << name << " [" << d.units[ic] << "], " << s.cycles
-            << " cycles of " << cycle << " deg\n  order     amplitude     phase [rad]\n";
-  for (std::size_t k = 0; k < s.order.size(); ++k)
-    std::cout << std::setw(7) << s.order[k] << std::setw(14) << std::setprecision(6)
-              << s.amplitude[k] << std::setw(14) << s.phase[k] << "\n";
-  if (vm.count("csv")) {
-    std::ofstream f(vm["csv"].as<std::string>());
-    if (!f) throw InputError(vm["csv"].as<std::string>() + ": cannot write");
-    f << "order,amplitude[" << d.units[ic] << "],phase[rad]\n" << std::setprecision(12);
-    for (std::size_t k = 0; k < s.order.size(); ++k)
-      f << s.order[k] << "," << s.amplitude[k] << "," << s.phase[k] << "\n";
-  }
+  const std::string csv = vm.count("csv") ? vm["csv"].as<std::string>() : "";
+  if (over_time)
+    time_mode(d, ic, t, segment, max_f, bands, csv);
+  else
+    order_mode(d, path, ic, cycles, cycle, max_order, csv);
   return 0;
 }
 

@@ -122,6 +122,20 @@ OutputSet::OutputSet(const OutputSpec& spec, System& system, double t_start, dou
           channels_.push_back({b.name + ".q" + std::to_string(k), ""});
         break;
       }
+      case ChannelRequest::Kind::Torsion: {
+        const Marker &a = model.markers().at(req.index), &b = model.markers().at(req.index2);
+        Torsion tr;
+        tr.offset = model.bodies().at(a.body).offset;
+        tr.a = a.Bt.transpose() * req.axis;
+        tr.b = b.Bt.transpose() * req.axis;
+        src.torsion = static_cast<int>(torsion_.size());
+        torsion_.push_back(std::move(tr));
+        for (const char* c : {"angle_a", "angle_b", "twist"})
+          channels_.push_back({req.name + "." + c, "rad"});
+        for (const char* c : {"rate_a", "rate_b", "twist_rate"})
+          channels_.push_back({req.name + "." + c, "rad/s"});
+        break;
+      }
     }
     sources_.push_back(src);
     if (req.kind == ChannelRequest::Kind::Marker) markers_.push_back(req.index);
@@ -193,6 +207,18 @@ void OutputSet::values(double t, const double* q, const double* v, double* out,
       case ChannelRequest::Kind::Modal: {
         const Body& b = model.bodies()[src.index];
         for (int k = 0; k < b.n(); ++k) o[k] = q[b.offset + k];
+        break;
+      }
+      case ChannelRequest::Kind::Torsion: {
+        const Torsion& tr = torsion_[static_cast<std::size_t>(src.torsion)];
+        const Eigen::Index n = tr.a.size();
+        const Eigen::Map<const Vec> qb(q + tr.offset, n), vb(v + tr.offset, n);
+        o[0] = tr.a.dot(qb);
+        o[1] = tr.b.dot(qb);
+        o[2] = o[1] - o[0];
+        o[3] = tr.a.dot(vb);
+        o[4] = tr.b.dot(vb);
+        o[5] = o[4] - o[3];
         break;
       }
     }

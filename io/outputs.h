@@ -4,6 +4,12 @@
 //   {marker: m}    m.px m.py m.pz [m], m.vx m.vy m.vz [m/s]   (G components)
 //   {element: e}   e.<channel> for every channel the element declares
 //   {modal: b}     b.q<k> for every mode k of body b (modal coordinate)
+//   {torsion: [A, B], name: N}  torsional vibration within one body, about the
+//                  twist axis n (in the body's axes; by default its LOF's spin
+//                  axis), relative to the LOF: N.angle_a, N.angle_b [rad] =
+//                  n . (B_theta q) of marker A and B (the rotation of the
+//                  marker's rigid fit), N.twist = angle_b - angle_a [rad], and
+//                  N.rate_a, N.rate_b, N.twist_rate [rad/s] the same with v
 // On the crank-angle grid a first channel "crank_angle" [deg] holds the LOF
 // spin angle of the crank body.
 // A constrained system (Problem::constraint_count() > 0) adds, after those, per
@@ -55,7 +61,15 @@ class OutputSet {
     int first;            // first channel
     unsigned quantities;  // marker: ChannelRequest::Quantity bits
     bool local;           // marker: components in its own axes
+    int torsion = -1;     // torsion: index into torsion_
   };
+  // A torsion request: the body's coordinates from `offset`, and the rows
+  // n^T B_theta of its two markers (angle = row . q).
+  struct Torsion {
+    int offset = 0;
+    Vec a, b;
+  };
+  std::vector<Torsion> torsion_;
   bool accelerations_ = false;  // a marker's (angular) acceleration is asked for
   System& sys_;
   std::vector<Channel> channels_;

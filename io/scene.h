@@ -18,7 +18,7 @@ namespace evas {
 
 /// One `output.channels` entry, resolved against the model.
 struct ChannelRequest {
-  enum class Kind { Marker, Element, Modal };
+  enum class Kind { Marker, Element, Modal, Torsion };
   /// What a marker request gives (bits): position, velocity, acceleration,
   /// angular velocity, angular acceleration.
   enum Quantity : unsigned {
@@ -34,6 +34,11 @@ struct ChannelRequest {
   int line = 0;                                 ///< line in the scene file (1-based)
   unsigned quantities = kPosition | kVelocity;  ///< marker requests
   bool local = false;  ///< marker requests: components in the marker's own axes
+  /// Torsion requests ({torsion: [A, B], name: N, axis: [x, y, z]}): `index` is
+  /// marker A, `index2` marker B (both on one body), `name` the channels'
+  /// prefix; `axis` the twist axis in the body's axes (zero: its LOF's spin axis).
+  int index2 = -1;
+  Vec3 axis = Vec3::Zero();
 };
 
 struct OutputSpec {

@@ -114,11 +114,27 @@ OutputSpec SceneReader::read_output(const Node& n, const Model& model, double t_
     for (std::size_t i = 0; i < ch.size(); ++i) {
       const Node c = ch[i];
       const std::string ci = "output.channels[" + std::to_string(i) + "]";
-      check_keys(c, ci, {"marker", "element", "modal", "quantities", "frame"});
+      check_keys(c, ci,
+                 {"marker", "element", "modal", "torsion", "quantities", "frame", "name", "axis"});
+      if (c["torsion"]) {
+        out.channels.push_back(read_torsion(c, ci, model));
+        const auto [at, fresh] =
+            requested.emplace(std::make_pair(static_cast<int>(ChannelRequest::Kind::Torsion),
+                                             out.channels.back().name),
+                              i);
+        if (!fresh)
+          fail(c, ci,
+               "repeats the name of output.channels[" + std::to_string(at->second) + "] ('" +
+                   out.channels.back().name + "'): give each torsion request its own 'name'");
+        continue;
+      }
+      if (c["name"] || c["axis"])
+        fail(c, ci, "'name' and 'axis' belong to a torsion request ({torsion: [A, B], ...})");
       const std::size_t extra = (c["quantities"] ? 1 : 0) + (c["frame"] ? 1 : 0);
       if (extra && !c["marker"])
         fail(c, ci, "'quantities' and 'frame' belong to a marker request ({marker: NAME, ...})");
-      if (c.size() != 1 + extra) fail(c, ci, "give exactly one of 'marker', 'element' and 'modal'");
+      if (c.size() != 1 + extra)
+        fail(c, ci, "give exactly one of 'marker', 'element', 'modal' and 'torsion'");
       ChannelRequest req;
       req.line = c.Mark().line + 1;
       std::vector<std::string> names;
@@ -193,6 +209,64 @@ OutputSpec SceneReader::read_output(const Node& n, const Model& model, double t_
     }
   }
   return out;
+}
+
+ChannelRequest SceneReader::read_torsion(const Node& c, const std::string& ci,
+                                         const Model& model) const {
+  check_keys(c, ci, {"torsion", "name", "axis"});
+  const Node t = c["torsion"];
+  if (!t.IsSequence() || t.size() != 2)
+    fail(t, ci, "'torsion' must list two markers on one body: [A, B] (the twist is B minus A)");
+  ChannelRequest req;
+  req.kind = ChannelRequest::Kind::Torsion;
+  req.line = c.Mark().line + 1;
+  std::vector<std::string> names;
+  for (const auto& m : model.markers()) names.push_back(m.name);
+  int idx[2] = {-1, -1};
+  std::string label[2];
+  for (int k = 0; k < 2; ++k) {
+    label[k] = text(t[k], ci, "torsion");
+    for (std::size_t j = 0; j < names.size(); ++j)
+      if (names[j] == label[k]) idx[k] = static_cast<int>(j);
+    if (idx[k] < 0)
+      fail(t[k], ci, "no marker named '" + label[k] + "' (known: " + join(names) + ")");
+    const Marker& m = model.markers()[idx[k]];
+    if (m.on_ground())
+      fail(
+          t[k], ci,
+          "marker '" + label[k] + "' is on the ground: a twist is between two markers of one body");
+    if (!m.has_rotation)
+      fail(t[k], ci,
+           "marker '" + label[k] +
+               "' has no rotation (a single node or a collinear set): the twist needs a set "
+               "marker whose nodes span a plane");
+  }
+  if (idx[0] == idx[1]) fail(t, ci, "the two markers are the same ('" + label[0] + "')");
+  const Marker &a = model.markers()[idx[0]], &b = model.markers()[idx[1]];
+  if (a.body != b.body)
+    fail(t, ci,
+         "markers '" + label[0] + "' and '" + label[1] + "' are on different bodies ('" +
+             model.bodies()[a.body].name + "', '" + model.bodies()[b.body].name +
+             "'): a twist is measured within one body");
+  req.index = idx[0];
+  req.index2 = idx[1];
+  req.name = c["name"] ? text(c["name"], ci, "name") : "twist_" + label[0] + "_" + label[1];
+  if (req.name.empty() || req.name.find_first_of(" .,\t") != std::string::npos)
+    fail(c["name"], ci, "'name' must be a word without spaces, dots or commas");
+  const Body& body = model.bodies()[a.body];
+  if (const Node ax = c["axis"]) {
+    req.axis = vec3(ax, ci, "axis");
+    if (!(req.axis.norm() > 0.0)) fail(ax, ci, "'axis' must not be zero");
+    req.axis.normalize();
+  } else if (body.lof.kind() == LofKind::Spin) {
+    // the spin axis in the body's axes (the spin leaves it where it is)
+    req.axis = (body.lof.at(0.0).R_GL.transpose() * body.lof.axis()).normalized();
+  } else {
+    fail(c, ci,
+         "body '" + body.name +
+             "' has no spin LOF to take the twist axis from: give 'axis' (in the body's axes)");
+  }
+  return req;
 }
 
 }  // namespace evas::scene_detail

@@ -211,6 +211,8 @@ class SceneReader {
                           const ParamValues& values) const;
   void read_joint(const Node& e, std::size_t i, Model& model);
   IntegratorSettings read_integrator(const Node& n) const;
+  /// An output request {torsion: [A, B], name: N, axis: [x, y, z]} (io/outputs.h).
+  ChannelRequest read_torsion(const Node& c, const std::string& ci, const Model& model) const;
   OutputSpec read_output(const Node& n, const Model& model, double t_start, double t_end) const;
 
   std::string file_;

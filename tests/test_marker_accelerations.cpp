@@ -12,6 +12,7 @@
 #include <sstream>
 #include <string>
 
+#include "demo_output.h"
 #include "integrators/integrator.h"
 #include "integrators/settings.h"
 #include "io/scene.h"
@@ -22,22 +23,10 @@ using namespace evas;
 
 namespace {
 
-const std::string kDemo = std::string(EVAS_SOURCE_DIR) + "/scenes/demo.yaml";
+using test_scenes::kDemo;
 
-// The demo scene with its output replaced by `output` (YAML block).
 std::string demo_with_output(const std::string& output) {
-  std::ifstream f(kDemo);
-  std::stringstream ss;
-  ss << f.rdbuf();
-  std::string text = ss.str();
-  const std::string span = "time: {start: 0, end: 0.15}";
-  const auto tpos = text.find(span);
-  EXPECT_NE(tpos, std::string::npos);
-  text.replace(tpos, span.size(), "time: {start: 0, end: 0.002}");
-  const auto at = text.find("\noutput:");
-  EXPECT_NE(at, std::string::npos);
-  const auto end = text.find("\n\n", at + 1);
-  return text.substr(0, at + 1) + output + (end == std::string::npos ? "" : text.substr(end));
+  return test_scenes::demo_with_output(output, "0.002");
 }
 
 int column(const run::MemorySink& s, const std::string& name) {
@@ -58,14 +47,8 @@ TEST(MarkerAccelerations, MatchDifferencesOfTheVelocities) {
                        "angular_velocity], frame: marker}\n"),
       kDemo);
   ASSERT_TRUE(scene.warnings.empty());
-  IntegratorSettings s = scene.integrator;
-  set_integrator_setting(s, "name", "ida");
-  set_integrator_setting(s, "rtol", "1e-11");
-  set_integrator_setting(s, "atol", "1e-14");
-  const std::unique_ptr<Integrator> integ = make_integrator(s.name);
-  run::SceneRun sr(scene, scene.t_end);
   run::MemorySink sink;
-  const run::Outcome o = sr.perform(*integ, s, sink);
+  const run::Outcome o = test_scenes::run_tight(scene, sink);
   ASSERT_TRUE(o.completed()) << o.message;
   const long w = sink.width();
   const auto& val = sink.values();
