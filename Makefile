@@ -28,6 +28,8 @@ demo: build
 	  --out $(DEMO_OUT)/study --quiet
 	@echo "work-precision diagram of the demo scene: $(DEMO_OUT)/study/study.png"
 	./validation/engine/run.sh $(BUILD) $(DEMO_OUT)/validation
+	./scripts/figures.sh $(BUILD) $(DEMO_OUT)/validation/case1/results.h5 $(DEMO_OUT)/figures
+	@echo "figures of the engine (evas plot): $(DEMO_OUT)/figures"
 	./$(BUILD)/evas problem andrews --work-precision --out $(DEMO_OUT)/problems/andrews
 	./$(BUILD)/evas problem car-axis --work-precision --out $(DEMO_OUT)/problems/car-axis
 	./$(BUILD)/evas problem fekete --work-precision --out $(DEMO_OUT)/problems/fekete
@@ -74,6 +76,9 @@ work-precision: build
 
 # Regenerate the parameter reference in docs/elements.md from the declarations.
 docs: build
+	tmp=$$(mktemp -d) && ./$(BUILD)/evas run validation/engine/engine.yaml --out $$tmp/case1 -q && \
+	  ./scripts/figures.sh $(BUILD) $$tmp/case1/results.h5 docs/figures && \
+	  rm -f docs/figures/*.gp docs/figures/*.dat && rm -rf $$tmp
 	{ sed '/<!-- BEGIN GENERATED: evas elements -->/q' docs/elements.md; \
 	  ./$(BUILD)/evas elements | sed '1{/^# /d;}' | sed '1{/^$$/d;}'; \
 	  echo '<!-- END GENERATED -->'; } > docs/elements.md.new && mv docs/elements.md.new docs/elements.md

@@ -23,6 +23,7 @@ const char* kUsage =
     "  modal build|import  FE pipeline (gmsh, ccx) and CalculiX import to a modal body\n"
     "  spectrum RESULTS.h5 order spectrum of a channel over whole engine cycles, or\n"
     "                      (--time) its amplitude, PSD and third-octave bands\n"
+    "  plot KIND RESULTS.h5 figures: channels, polar, orbit, film, order, spectrum\n"
     "  study SUB SCENE     compare integrators: work-precision, convergence, stability\n"
     "  problem NAME        DAE test problems (andrews, car-axis, ...) scored in digits\n"
     "\n"
@@ -82,6 +83,7 @@ int main(int argc, char** argv) {
     if (cmd == "elements") return evas::cli::cmd_elements(args);
     if (cmd == "modal") return evas::cli::cmd_modal(args);
     if (cmd == "spectrum") return evas::cli::cmd_spectrum(args);
+    if (cmd == "plot") return evas::cli::cmd_plot(args);
     if (cmd == "study") return evas::cli::cmd_study(args);
     if (cmd == "problem") return evas::cli::cmd_problem(args);
   } catch (const boost::program_options::error& e) {

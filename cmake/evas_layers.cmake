@@ -22,7 +22,8 @@ set(EVAS_LAYERS
     "post:model"
     "io:model bodies elements solver integrators"
     "run:io integrators solver dae elements model"
-    "study:run io integrators solver dae elements model post")
+    "plot:model post io"
+    "study:run io integrators solver dae elements model post plot")
 
 # EVAS_LAYER_DEPS_<layer>: every layer below it (the closure)
 function(_evas_layer_closure)

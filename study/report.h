@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "model/types.h"
+#include "plot/gnuplot.h"
 
 namespace evas::study {
 
@@ -25,15 +26,9 @@ std::string inum(double x);
 /// half a file). Throws RunError naming the file.
 void write_file_atomic(const std::filesystem::path& path, const std::string& text);
 
-/// True when `gnuplot` is on the PATH.
-bool have_gnuplot();
-/// Runs gnuplot on `script` in the script's folder (the script names its output
-/// file without a folder); false on failure.
-bool run_gnuplot(const std::filesystem::path& script);
-/// Several scripts of one folder in one gnuplot process, in order (gnuplot's
-/// start is most of the time of a small figure). False when gnuplot failed.
-bool run_gnuplot(const std::vector<std::filesystem::path>& scripts);
-/// Text as a gnuplot single-quoted string literal.
-std::string gp_quote(const std::string& s);
+// gnuplot (plot/gnuplot.h), by its study names
+using evas::gp_quote;
+using evas::have_gnuplot;
+using evas::run_gnuplot;
 
 }  // namespace evas::study

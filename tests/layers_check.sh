@@ -11,7 +11,7 @@ src="$1"
 tmp="$(mktemp -d "${TMPDIR:-/tmp}/evas-layers.XXXXXX")"
 trap 'rm -rf "$tmp"' EXIT
 tree="$tmp/tree"
-for layer in model bodies elements dae problems solver integrators post io run study; do
+for layer in model bodies elements dae problems solver integrators post io run plot study; do
   mkdir -p "$tree/$layer"
   echo "int evas_probe_$layer() { return 0; }" > "$tree/$layer/$layer.cpp"
 done

@@ -1,0 +1,44 @@
+// Figures by gnuplot (gnuplot.h).
+#include "plot/gnuplot.h"
+
+#include <cstdlib>
+
+namespace evas {
+
+std::string shell_quote(const std::string& s) {
+  std::string out = "'";
+  for (char c : s) {
+    if (c == '\'')
+      out += "'\\''";
+    else
+      out += c;
+  }
+  return out + "'";
+}
+
+bool have_gnuplot() { return std::system("command -v gnuplot >/dev/null 2>&1") == 0; }
+
+bool run_gnuplot(const std::filesystem::path& script) {
+  return run_gnuplot(std::vector<std::filesystem::path>{script});
+}
+
+bool run_gnuplot(const std::vector<std::filesystem::path>& scripts) {
+  if (scripts.empty()) return true;
+  // from the scripts' folder: a script names its output without a folder
+  const std::filesystem::path& first = scripts.front();
+  const std::filesystem::path dir = first.has_parent_path() ? first.parent_path() : ".";
+  std::string cmd = "cd " + shell_quote(dir.string()) + " && gnuplot";
+  for (const auto& s : scripts) cmd += " " + shell_quote(s.filename().string());
+  return std::system((cmd + " >/dev/null 2>&1").c_str()) == 0;
+}
+
+std::string gp_quote(const std::string& s) {
+  std::string out = "'";
+  for (char c : s) {
+    if (c == '\'') out += '\'';
+    out += c;
+  }
+  return out + "'";
+}
+
+}  // namespace evas

@@ -1,0 +1,25 @@
+// Figures by gnuplot (a Debian package; docs/dependencies.md): finding it,
+// running scripts, quoting. Used by `evas plot` (plot/figures.h) and by the
+// studies' diagrams (study/).
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace evas {
+
+/// True when `gnuplot` is on the PATH.
+bool have_gnuplot();
+/// Runs gnuplot on `script` in the script's folder (the script names its output
+/// file without a folder); false on failure.
+bool run_gnuplot(const std::filesystem::path& script);
+/// Several scripts of one folder in one gnuplot process, in order (gnuplot's
+/// start is most of the time of a small figure). False when gnuplot failed.
+bool run_gnuplot(const std::vector<std::filesystem::path>& scripts);
+/// A gnuplot string literal: '...' with ' doubled.
+std::string gp_quote(const std::string& s);
+/// A POSIX shell word: '...' with ' written as '\''.
+std::string shell_quote(const std::string& s);
+
+}  // namespace evas

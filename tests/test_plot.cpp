@@ -1,0 +1,168 @@
+// evas plot (plot/figures.h): every kind draws the validation engine's results
+// as PNG and SVG, with its data beside it; the data are the results' own values
+// (the polar diagram's load on the shell is -f in kN, the orbit's clearance
+// circle has the scene's clearance, read back from |e| / eps), and a figure the
+// file cannot give is an error naming what is there.
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <sstream>
+
+#include "io/results.h"
+#include "run_faults_support.h"
+
+namespace {
+
+const std::string kEngine = std::string(EVAS_SOURCE_DIR) + "/validation/engine/engine.yaml";
+
+// One engine run shared by the tests: 0.05 s at 3000 rpm, 2.5 revolutions
+// (more than one 720-deg cycle) on the 1-deg crank-angle grid.
+const fs::path& engine_results() {
+  static TempFolder tmp;
+  static const fs::path results = [] {
+    const Outcome o =
+        run_evas({"run", kEngine, "--t-end", "0.05", "--out", (tmp.path() / "e").string()},
+                 tmp.path() / "run.log");
+    EXPECT_EQ(o.code, 0) << o.log;
+    return tmp.path() / "e" / "results.h5";
+  }();
+  return results;
+}
+
+// Rows of numbers of block `index` of a gnuplot data file (blocks are
+// separated by two blank lines).
+std::vector<std::vector<double>> data_block(const fs::path& dat, int index) {
+  std::ifstream f(dat);
+  std::vector<std::vector<double>> rows;
+  std::string line;
+  int block = 0, blanks = 0;
+  while (std::getline(f, line)) {
+    if (line.empty()) {
+      if (++blanks == 2) ++block;
+      continue;
+    }
+    blanks = 0;
+    if (block != index) continue;
+    std::istringstream is(line);
+    std::vector<double> r;
+    double x;
+    while (is >> x) r.push_back(x);
+    rows.push_back(r);
+  }
+  return rows;
+}
+
+Outcome plot(const std::vector<std::string>& extra, const fs::path& out) {
+  std::vector<std::string> args = {"plot"};
+  args.insert(args.end(), extra.begin(), extra.end());
+  args.push_back("--out");
+  args.push_back(out.string());
+  return run_evas(args, out.parent_path() / "plot.log");
+}
+
+}  // namespace
+
+TEST(Plot, EveryKindDrawsPngAndSvgWithItsData) {
+  TempFolder tmp;
+  const std::string r = engine_results().string();
+  const std::vector<std::vector<std::string>> kinds = {
+      {"channels", r, "--channel", "main*.fy"},
+      {"polar", r, "--element", "main3"},
+      {"orbit", r, "--element", "main3"},
+      {"film", r, "--element", "main3"},
+      {"order", r, "--channel", "main3.fy", "--cycles", "1"},
+      {"spectrum", r, "--channel", "main3.fy", "--window", "flattop"}};
+  for (const auto& k : kinds)
+    for (const char* ext : {".png", ".svg"}) {
+      SCOPED_TRACE(k[0] + ext);
+      const fs::path out = tmp.path() / (k[0] + ext);
+      const Outcome o = plot(k, out);
+      ASSERT_EQ(o.code, 0) << o.log;
+      EXPECT_GT(fs::file_size(out), 5000u);
+      EXPECT_TRUE(fs::exists(tmp.path() / (k[0] + ".gp")));
+      EXPECT_TRUE(fs::exists(tmp.path() / (k[0] + ".dat")));
+    }
+}
+
+TEST(Plot, PolarAndOrbitDataAreTheResultsOwnValues) {
+  TempFolder tmp;
+  const evas::ResultsData d = evas::read_results(engine_results().string());
+  auto col = [&](const std::string& n) {
+    for (std::size_t i = 0; i < d.names.size(); ++i)
+      if (d.names[i] == n) return static_cast<Eigen::Index>(i);
+    ADD_FAILURE() << "no " << n;
+    return Eigen::Index{0};
+  };
+  ASSERT_EQ(
+      plot({"polar", engine_results().string(), "--element", "main2"}, tmp.path() / "p.png").code,
+      0);
+  // the last cycle: the rows from crank angle end - 720 on
+  const Eigen::Index n = d.values.rows();
+  Eigen::Index r0 = n - 1;
+  while (r0 > 0 &&
+         d.values(r0 - 1, col("crank_angle")) >= d.values(n - 1, col("crank_angle")) - 720 - 1e-9)
+    --r0;
+  const auto shell = data_block(tmp.path() / "p.dat", 0),
+             journal = data_block(tmp.path() / "p.dat", 1);
+  ASSERT_EQ(shell.size(), static_cast<std::size_t>(n - r0));
+  ASSERT_EQ(journal.size(), shell.size());
+  for (Eigen::Index r = r0; r < n; r += 37) {
+    const auto& s = shell[static_cast<std::size_t>(r - r0)];
+    const auto& j = journal[static_cast<std::size_t>(r - r0)];
+    EXPECT_NEAR(s[0], -1e-3 * d.values(r, col("main2.fx")), 1e-9 * (1 + std::abs(s[0])));
+    EXPECT_NEAR(s[1], -1e-3 * d.values(r, col("main2.fy")), 1e-9 * (1 + std::abs(s[1])));
+    EXPECT_NEAR(j[0], 1e-3 * d.values(r, col("main2.fx_journal")), 1e-9 * (1 + std::abs(j[0])));
+  }
+  // labels every 90 deg of the cycle, 4 in each half, each half with the centre
+  EXPECT_EQ(data_block(tmp.path() / "p.dat", 2).size(), 5u);
+  EXPECT_EQ(data_block(tmp.path() / "p.dat", 3).size(), 5u);
+  // the orbit's circle: the scene's clearance 3e-5 m = 30 um
+  ASSERT_EQ(
+      plot({"orbit", engine_results().string(), "--element", "main2"}, tmp.path() / "o.png").code,
+      0);
+  const auto circle = data_block(tmp.path() / "o.dat", 1);
+  ASSERT_EQ(circle.size(), 361u);
+  EXPECT_NEAR(std::hypot(circle[45][0], circle[45][1]), 30.0, 1e-6);
+  const auto orbit = data_block(tmp.path() / "o.dat", 0);
+  for (const auto& p : orbit) EXPECT_LT(std::hypot(p[0], p[1]), 30.0);
+}
+
+TEST(Plot, FiguresTheFileCannotGiveAreErrorsNamingWhatIsThere) {
+  TempFolder tmp;
+  const std::string r = engine_results().string();
+  struct Bad {
+    std::vector<std::string> args;
+    std::string says;
+  };
+  for (const Bad& b : std::vector<Bad>{
+           {{"polar", r, "--element", "cyl1"},
+            "journal bearings in this file: main1, main2, main3, main4, main5"},
+           {{"waterfall", r}, "a waterfall is drawn from a sweep over speeds"},
+           {{"pie", r},
+            "unknown kind 'pie' (known: channels, polar, orbit, film, order, spectrum)"},
+           {{"channels", r, "--channel", "main9.*"},
+            "no channel matches 'main9.*'; channels here: crank_angle"},
+           {{"orbit", r}, "give --element NAME"},
+           {{"film", r, "--element", "main1", "--cycles", "9"}, "less than 9 cycle(s)"},
+           {{"order", r, "--channel", "main1.fy", "--element", "main1"},
+            "--element applies to polar"}}) {
+    SCOPED_TRACE(b.says);
+    const Outcome o = plot(b.args, tmp.path() / "x.png");
+    EXPECT_EQ(o.code, 1) << o.log;
+    EXPECT_NE(o.log.find(b.says), std::string::npos) << o.log;
+    EXPECT_FALSE(fs::exists(tmp.path() / "x.png"));
+  }
+  const Outcome jpg = plot({"polar", r, "--element", "main1"}, tmp.path() / "x.jpg");
+  EXPECT_EQ(jpg.code, 1);
+  EXPECT_NE(jpg.log.find("ending in .png or .svg"), std::string::npos) << jpg.log;
+  // an order spectrum needs the crank-angle grid: the demo runs on the time grid
+  const Outcome demo = run_evas({"run", std::string(EVAS_SOURCE_DIR) + "/scenes/demo.yaml",
+                                 "--t-end", "0.01", "--out", (tmp.path() / "d").string()},
+                                tmp.path() / "d.log");
+  ASSERT_EQ(demo.code, 0) << demo.log;
+  const Outcome o =
+      plot({"order", (tmp.path() / "d" / "results.h5").string(), "--channel", "bearing_left.fx"},
+           tmp.path() / "y.png");
+  EXPECT_EQ(o.code, 1);
+  EXPECT_NE(o.log.find("needs the crank-angle output grid"), std::string::npos) << o.log;
+}
