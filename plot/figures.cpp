@@ -46,6 +46,7 @@ struct Scale {
 Scale display(const std::string& unit) {
   if (unit == "N") return {1e-3, "kN"};
   if (unit == "Pa") return {1e-6, "MPa"};
+  if (unit == "rad") return {1e3, "mrad"};
   if (unit == "m") return {1e6, "\u00b5m"};
   if (unit == "N m") return {1.0, "N m"};
   return {1.0, unit.empty() ? "-" : unit};

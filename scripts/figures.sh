@@ -25,5 +25,8 @@ plot polar polar_main3 --element main3
 plot orbit orbit_main3 --element main3
 plot film film_main3 --element main3
 plot channels friction_power --channel 'main*.friction_power' --cycles 1
+plot channels crank_torsion --channel 'crank.angle_a' --channel 'crank.angle_b' \
+  --channel 'crank.twist' --cycles 1 \
+  --title 'crankshaft torsion relative to its LOF: front main journal (a), flywheel (b), twist b - a'
 plot order order_main3_fy --channel main3.fy --cycles 2
 plot spectrum spectrum_main3_fy --channel main3.fy --window flattop --from 0.08 --max-frequency 1500
