@@ -26,11 +26,11 @@ int cmd_plot(const std::vector<std::string>& args) {
       "element", po::value<std::string>(&o.element), "journal bearing (polar, orbit, film)")(
       "out", po::value<std::string>(), "the figure: a file name ending in .png or .svg")(
       "cycles", po::value<int>(&o.cycles),
-      "the last N whole cycles of a crank-angle grid (0: the whole record; default 1, "
-      "channels: 0)")("cycle", po::value<double>(&o.cycle)->default_value(720.0),
-                      "cycle length [deg]")("x",
-                                            po::value<std::string>(&o.x)->default_value("auto"),
-                                            "channels, film: auto, time or crank-angle")(
+      "the last N whole cycles of a crank-angle grid (default 1; channels: 0, the whole "
+      "record; order: 0, every whole cycle)")(
+      "cycle", po::value<double>(&o.cycle)->default_value(720.0), "cycle length [deg]")(
+      "x", po::value<std::string>(&o.x)->default_value("auto"),
+      "channels, film: auto, time or crank-angle")(
       "max-order", po::value<double>(&o.max_order)->default_value(12.0), "order: highest order")(
       "window", po::value<std::string>(&o.spectrum.window)->default_value("hann"),
       "spectrum: rectangular, hann or flattop")("from", po::value<double>(&o.spectrum.t0),
@@ -46,7 +46,7 @@ int cmd_plot(const std::vector<std::string>& args) {
   }
   o.kind = vm["kind"].as<std::string>();
   if (!vm.count("cycles")) o.cycles = o.kind == "channels" || o.kind == "order" ? 0 : 1;
-  if (o.cycles < 0) throw InputError("--cycles must be >= 0 (0: the whole record)");
+  if (o.cycles < 0) throw InputError("--cycles must be >= 0");
   if (!(o.cycle > 0.0 && o.cycle <= 1e6)) throw InputError("--cycle must be > 0 and <= 1e6 deg");
   if (vm.count("max-frequency") && !(o.max_frequency > 0.0))
     throw InputError("--max-frequency must be > 0 Hz");

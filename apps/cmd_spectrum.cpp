@@ -62,6 +62,9 @@ void time_mode(const ResultsData& d, int ic, const TimeSpectrumOptions& o, doubl
     if (d.time.size() < 2) throw InputError("--segment: the record has fewer than 2 samples");
     const double dt = (d.time.back() - d.time.front()) / static_cast<double>(d.time.size() - 1);
     opt.segment = std::lround(segment_s / dt);
+    if (opt.segment < 4)
+      throw InputError("--segment " + std::to_string(segment_s) +
+                       " s is shorter than 4 samples (dt = " + std::to_string(dt) + " s)");
   }
   const TimeSpectrum s = time_spectrum(d.time, y, opt);
   const std::string& unit = d.units[ic];

@@ -3,6 +3,7 @@
 
 #include <sys/stat.h>
 
+#include <algorithm>
 #include <deque>
 #include <mutex>
 
@@ -91,7 +92,14 @@ std::shared_ptr<const ModalBody> derived_body_cached(
   auto body = std::make_shared<const ModalBody>(derive(read_body_file_cached(path)));
   std::lock_guard<std::mutex> g(lock);
   derived.push_back({f, recipe, body});
-  if (derived.size() > kDerived) derived.pop_front();
+  if (derived.size() > kDerived) {
+    // its marker fits go with it: they would keep the body alive
+    const ModalBody* gone = derived.front().body.get();
+    markers.erase(std::remove_if(markers.begin(), markers.end(),
+                                 [&](const MarkerEntry& m) { return m.body.get() == gone; }),
+                  markers.end());
+    derived.pop_front();
+  }
   return body;
 }
 

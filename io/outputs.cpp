@@ -142,6 +142,17 @@ OutputSet::OutputSet(const OutputSpec& spec, System& system, double t_start, dou
     if (req.kind == ChannelRequest::Kind::Element)
       for (int mk : model.elements()[req.index]->markers()) markers_.push_back(mk);
   }
+  // every channel under its own name (a torsion request may be named like an
+  // element: the motor's `twist` would then appear twice)
+  {
+    std::vector<std::string> names;
+    for (const Channel& c : channels_) names.push_back(c.name);
+    std::sort(names.begin(), names.end());
+    const auto twice = std::adjacent_find(names.begin(), names.end());
+    if (twice != names.end())
+      throw InputError("output: two channels are named '" + *twice +
+                       "': give the torsion request another 'name'");
+  }
   std::sort(markers_.begin(), markers_.end());
   markers_.erase(std::unique(markers_.begin(), markers_.end()), markers_.end());
   const int m = sys_.constraint_count();

@@ -2,6 +2,7 @@
 // truncation of modes, damping) or generated (truss beam), and their LOFs.
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <memory>
 
@@ -47,9 +48,15 @@ void SceneReader::read_body(const Node& b, std::size_t i, Model& model) {
     // everything the body made of the file depends on besides the file
     YAML::Emitter modes_text;
     if (modes) modes_text << modes;
+    // numbers to the last bit (number_text rounds to 6 digits): two damping
+    // ratios or tolerances that differ are two recipes
+    auto exact = [](double x) {
+      char buf[32];
+      std::snprintf(buf, sizeof buf, "%a", x);
+      return std::string(buf);
+    };
     const std::string recipe = name + "\n" + modes_text.c_str() + "\n" +
-                               (zeta_node ? number_text(zeta) : "-") + "\n" +
-                               number_text(tolerance);
+                               (zeta_node ? exact(zeta) : "-") + "\n" + exact(tolerance);
     auto derive = [&](ModalBody body) {
       // The modal contract (orthonormal modes, rigid modes rigid, ...) of the
       // file as written, before any truncation.

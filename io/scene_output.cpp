@@ -252,7 +252,11 @@ ChannelRequest SceneReader::read_torsion(const Node& c, const std::string& ci,
   req.index2 = idx[1];
   req.name = c["name"] ? text(c["name"], ci, "name") : "twist_" + label[0] + "_" + label[1];
   if (req.name.empty() || req.name.find_first_of(" .,\t") != std::string::npos)
-    fail(c["name"], ci, "'name' must be a word without spaces, dots or commas");
+    fail(c["name"] ? c["name"] : c, ci,
+         c["name"] ? "'name' must be a word without spaces, dots or commas"
+                   : "the default name '" + req.name +
+                         "' (from the marker names) is not a word without spaces, dots or "
+                         "commas: give 'name'");
   const Body& body = model.bodies()[a.body];
   if (const Node ax = c["axis"]) {
     req.axis = vec3(ax, ci, "axis");

@@ -394,6 +394,9 @@ void plot_spectrum(const Record& rec, const PlotOptions& o, const fs::path& out,
     f.dat << num(s.frequency[k]) << " " << num(sc.factor * s.amplitude[k]) << "\n";
     top = std::max(top, sc.factor * s.amplitude[k]);
   }
+  if (s.frequency.size() < 2 || (o.max_frequency > 0.0 && o.max_frequency < s.frequency[1]))
+    throw InputError("--max-frequency " + num(o.max_frequency) +
+                     " Hz is below the first bin (df = " + num(s.df) + " Hz)");
   if (!(top > 0.0))
     throw InputError(rec.name() + ": " + d.names[c] + " is constant over the window");
   f.gp << terminal(out, 1000, 600) << "set title "

@@ -30,10 +30,11 @@ class BodyCache : public ::testing::Test {
     fs::remove_all(dir_, ec);
   }
   // A scene on BODY keeping `elastic` elastic modes, with a set marker.
-  Scene parse(const fs::path& body, int elastic) const {
+  Scene parse(const fs::path& body, int elastic, const std::string& zeta = "") const {
     const std::string text = "name: cache\nbodies:\n  - name: b\n    file: " + body.string() +
                              "\n    modes: {rigid: true, elastic: " + std::to_string(elastic) +
-                             "}\nmarkers:\n  - {name: m, body: b, set: first4}\n"
+                             "}\n" + (zeta.empty() ? "" : "    damping_ratio: " + zeta + "\n") +
+                             "markers:\n  - {name: m, body: b, set: first4}\n"
                              "  - {name: g, ground: [0, 0, 0]}\n"
                              "elements:\n  - {name: k, type: spring-damper, markers: [m, g], "
                              "stiffness: [1e5, 1e5, 1e5]}\n"
@@ -58,6 +59,10 @@ TEST_F(BodyCache, SameRecipeSharesOneBodyAndAnotherRecipeGetsItsOwn) {
   EXPECT_EQ(a.model->markers()[0].Bu.cols(), 9);
   EXPECT_EQ(b.model->markers()[0].Bu.cols(), 9);
   EXPECT_EQ(c.model->markers()[0].Bu.cols(), 11);
+  // damping ratios that differ beyond 6 digits are two recipes, not one
+  const Scene d1 = parse(file, 3, "0.0100000"), d2 = parse(file, 3, "0.01000001");
+  EXPECT_NE(d1.model->bodies()[0].data.get(), d2.model->bodies()[0].data.get());
+  EXPECT_NE(d1.model->bodies()[0].data->damping[8], d2.model->bodies()[0].data->damping[8]);
 }
 
 TEST_F(BodyCache, ARewrittenFileIsReadAgain) {

@@ -97,6 +97,25 @@ std::string demo_with_output(const std::string& output) {
   return test_scenes::demo_with_output(output, "0.004");
 }
 
+// A generated beam spinning at 200 rad/s (`lof` the spin LOF's axis and
+// placement), markers `left` (named as given) and `right` on its end sets,
+// and one output request; the request is on line 13.
+std::string beam_scene(const std::string& lof, const std::string& left,
+                       const std::string& request) {
+  return "name: rings\nbodies:\n  - name: shaft\n"
+         "    generate: {type: truss-beam, segments: 6, length: 0.6, width: 0.05}\n"
+         "    modes: {rigid: false, elastic: 8}\n"
+         "    lof: {kind: spin, " +
+         lof +
+         ", speed: 200}\n"
+         "markers:\n  - {name: " +
+         left +
+         ", body: shaft, set: end0}\n"
+         "  - {name: right, body: shaft, set: end1}\n"
+         "time: {start: 0, end: 0.01}\noutput:\n  channels:\n    - " +
+         request + "\n";
+}
+
 }  // namespace
 
 TEST(TorsionChannels, AnglesAndRatesAboutTheSpinAxisByHand) {
@@ -124,20 +143,9 @@ TEST(TorsionChannels, AnglesAndRatesAboutTheSpinAxisByHand) {
 TEST(TorsionChannels, TheDefaultAxisIsTheSpinAxisInTheBodysAxes) {
   // a body whose x axis is turned onto G's z, spinning about G's z: the parser
   // takes the twist axis as the body's x (R_GL0^T z), and the values follow
-  const std::string scene = R"(name: rings
-bodies:
-  - name: shaft
-    generate: {type: truss-beam, segments: 6, length: 0.6, width: 0.05}
-    modes: {rigid: false, elastic: 8}
-    lof: {kind: spin, axis: [0, 0, 1], origin: [0, 0, 0], rotation: [0, -1.5707963267948966, 0], speed: 200}
-markers:
-  - {name: left, body: shaft, set: end0}
-  - {name: right, body: shaft, set: end1}
-time: {start: 0, end: 0.01}
-output:
-  channels:
-    - {torsion: [left, right], name: tv}
-)";
+  const std::string scene =
+      beam_scene("axis: [0, 0, 1], origin: [0, 0, 0], rotation: [0, -1.5707963267948966, 0]",
+                 "left", "{torsion: [left, right], name: tv}");
   const Scene s = parse_scene(scene, "rings.yaml");
   ASSERT_EQ(s.output.channels.size(), 1u);
   const ChannelRequest& r = s.output.channels[0];
@@ -210,6 +218,35 @@ TEST(TorsionChannels, BadRequestsNameWhatIsThere) {
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("give each torsion request its own 'name'"),
               std::string::npos)
+        << e.what();
+  }
+}
+
+TEST(TorsionChannels, NamesThatCannotBeChannelNamesAreRefused) {
+  // markers whose names make the default name no word: 'name' is asked for
+  const std::string scene =
+      beam_scene("axis: [1, 0, 0], origin: [0, 0, 0]", "le.ft", "{torsion: [le.ft, right]}");
+  try {
+    parse_scene(scene, "rings.yaml");
+    ADD_FAILURE() << "accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("the default name 'twist_le.ft_right'"), std::string::npos)
+        << e.what();
+    EXPECT_NE(std::string(e.what()).find("rings.yaml:13"), std::string::npos) << e.what();
+  }
+  // a torsion request named like the engine's motor: dyno.twist twice
+  std::ifstream f(std::string(EVAS_SOURCE_DIR) + "/validation/engine/engine.yaml");
+  std::stringstream ss;
+  ss << f.rdbuf();
+  const std::string engine = ss.str() + "    - {torsion: [j1, fw], name: dyno}\n";
+  const Scene s =
+      parse_scene(engine, std::string(EVAS_SOURCE_DIR) + "/validation/engine/engine.yaml");
+  System sys(*s.model);
+  try {
+    OutputSet out(s.output, sys, s.t_start, s.t_end);
+    ADD_FAILURE() << "accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("two channels are named 'dyno.twist'"), std::string::npos)
         << e.what();
   }
 }
