@@ -1,6 +1,7 @@
 #!/bin/sh
 # The paper's validation: Case 1 (soft mounts) against Case 2 (rigid ground),
-# main-bearing loads over crank angle and their order spectra (docs/validation.md).
+# main-bearing loads over crank angle and their order spectra, and both cases
+# without the thrust bearing and the belt (docs/validation.md).
 #   usage: validation/engine/run.sh BUILD_DIR OUT_DIR [END_TIME]
 # END_TIME (s) shortens the run (CI uses a short one; the default is the scene's 0.24 s:
 # six cycles, the spectra use the last two).
@@ -26,8 +27,10 @@ case2=$tmp/case2.yaml
 case3=$tmp/case3.yaml
 case4=$tmp/case4.yaml
 case5=$tmp/case5.yaml
+case6=$tmp/case6.yaml
+case7=$tmp/case7.yaml
 
-for c in 1 2 3 4 5; do
+for c in 1 2 3 4 5 6 7; do
   echo "== case $c"
   eval scene=\$case$c
   /usr/bin/time -f "case $c: %e s wall, %M kB peak" "$evas" run "$scene" --out "$out/case$c" --csv --overwrite
@@ -108,6 +111,52 @@ echo "order table (kN, Case 2 with stiff mounts, spherical joints, fixed joints)
 } > "$out/states.md"
 echo "order table (kN, Case 1 without / with element states): $out/states.md"
 
+# Cases 1 and 2 with and without the thrust bearing and the belt (cases 6, 7):
+# amplitudes [kN] and the change in % of the channel's largest order (without);
+# order 0 is the mean load, where a constant belt tension acts first.
+{
+  printf "| channel | order | Case 1 without | Case 1 with | Case 2 without | Case 2 with |\n"
+  printf "|---|---|---|---|---|---|\n"
+  for b in 1 2 3 4 5; do
+    for ch in fx fy; do
+      for o in 0 $orders; do
+        printf "| main%s.%s | %s |" "$b" "$ch" "$o"
+        for pair in "6 1" "7 2"; do
+          set -- $pair
+          s0=$out/case$1/spectrum_main$b.$ch.csv
+          s1=$out/case$2/spectrum_main$b.$ch.csv
+          peak=$(awk -F, 'NR > 1 && $1 > 0 && $2 > m {m = $2} END {print m}' "$s0")
+          a0=$(awk -F, -v o="$o" 'NR > 1 && $1 == o {print $2}' "$s0")
+          a1=$(awk -F, -v o="$o" 'NR > 1 && $1 == o {print $2}' "$s1")
+          awk -v a="$a0" -v b="$a1" -v p="$peak" \
+            'BEGIN {printf " %.2f | %.2f (%+.2f, %+.1f %%) |", a / 1000, b / 1000, (b - a) / 1000,
+                    100 * (b - a) / p}'
+        done
+        printf "\n"
+      done
+    done
+  done
+} > "$out/thrust_belt.md"
+# what the two elements carry in Cases 1 and 2, over the last two cycles
+for c in 1 2; do
+  awk -F, -v c="$c" '
+    NR == 1 {for (i = 1; i <= NF; i++) col[$i] = i; next}
+    {row[NR] = $0; n = NR}
+    END {
+      from = n - 1439
+      for (r = from; r <= n; r++) {
+        split(row[r], v, ",")
+        f = v[col["thrust.force[N]"]]; d = v[col["thrust.displacement[m]"]]
+        if (f < 0) f = -f; if (d < 0) d = -d
+        if (f > fm) fm = f; if (d > dm) dm = d
+        px += v[col["belt.pulley0_fx[N]"]]; py += v[col["belt.pulley0_fy[N]"]]; k++
+      }
+      printf "Case %s: thrust bearing max |F| %.3g N, max |d| %.1f um (gap 50 um); ", c, fm, 1e6 * dm
+      printf "belt load on the crank pulley, mean (y, z) = (%.0f, %.0f) N\n", px / k, py / k
+    }' "$out/case$c/results.csv"
+done | tee "$out/thrust_belt_loads.txt"
+echo "order table (kN, Cases 1 and 2 without / with thrust bearing and belt): $out/thrust_belt.md"
+
 if ! command -v gnuplot >/dev/null 2>&1; then
   echo "validation: gnuplot not found, no plots; results in $out" >&2
   exit 0
@@ -142,4 +191,4 @@ plot "$out/case1/spectrum_main3.fx.csv" skip 1 using (\$1-0.1):(\$2/1000) with b
      "$out/case2/spectrum_main3.fx.csv" skip 1 using (\$1+0.1):(\$2/1000) with boxes title "Case 2"
 unset multiplot
 GP
-echo "validation results: $out/case1, $out/case2, $out/case3 (fixed joints), $out/case4 (spherical joints), $out/case5 (element states), $out/main_bearing_load.png"
+echo "validation results: $out/case1, $out/case2, $out/case3 (fixed joints), $out/case4 (spherical joints), $out/case5 (element states), $out/case6, $out/case7 (Cases 1, 2 without thrust bearing and belt), $out/main_bearing_load.png"

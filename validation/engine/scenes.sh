@@ -1,10 +1,11 @@
 #!/bin/sh
-# The validation engine's five scenes, written into a folder: case1.yaml (the
+# The validation engine's seven scenes, written into a folder: case1.yaml (the
 # paper's Case 1, soft mounts), case2.yaml (Case 2, rigid ground by stiff
 # mounts), case3.yaml (Case 2 welded by fixed joints), case4.yaml (Case 2 by
-# spherical joints) and case5.yaml (Case 1 with element states), with the body
-# and pressure files of engine.yaml as absolute paths. Used by run.sh and
-# scripts/reference_runs.sh.
+# spherical joints), case5.yaml (Case 1 with element states), case6.yaml and
+# case7.yaml (Cases 1 and 2 without the thrust bearing and the belt), with the
+# body and pressure files of engine.yaml as absolute paths. Used by run.sh,
+# runup.sh and scripts/reference_runs.sh.
 #   usage: validation/engine/scenes.sh OUT_DIR [END_TIME]
 set -eu
 if [ $# -lt 1 ]; then
@@ -20,6 +21,8 @@ case2=$tmp/case2.yaml
 case3=$tmp/case3.yaml
 case4=$tmp/case4.yaml
 case5=$tmp/case5.yaml
+case6=$tmp/case6.yaml
+case7=$tmp/case7.yaml
 absolute="s|\.\./bodies/|$dir/../bodies/|g; s|\.\./data/|$dir/../data/|g"
 # The second-order linear solver takes no constraints and no element states:
 # the joint and state cases (3-5) factorize IDA's full matrix by KLU.
@@ -56,8 +59,17 @@ sed -e "$absolute" "$dir/engine.yaml" |
   sed -e "s/damping: \[1000, 1000, 1000\]}/damping: [1000, 1000, 1000],\n     maxwell_stiffness: [1.5e5, 1.5e5, 3e5], maxwell_damping: [2400, 2400, 4800]}/" \
       -e "s/stiffness: 5e4, damping: 20}/stiffness: 5e4, damping: 20,\n     clutch_stiffness: 5e4, clutch_damping: 10}/" \
       -e "s/^name: engine-case1/name: engine-case1-states/" -e "$klu" > "$case5"
+# Cases 1 and 2 without the thrust bearing and the belt (the engine before they
+# were added): the block between the THRUST BELT markers and their output
+# channels removed; their markers stay (unused).
+without='/# THRUST BELT BEGIN/ {skip = 1; next}
+         /# THRUST BELT END/ {skip = 0; next}
+         /\{element: (thrust|belt)\}/ {next}
+         !skip {print}'
+awk "$without" "$case1" | sed -e "s/^name: engine-case1/name: engine-case1-without/" > "$case6"
+awk "$without" "$case2" | sed -e "s/^name: engine-case2/name: engine-case2-without/" > "$case7"
 if [ -n "$end" ]; then
-  for f in "$case1" "$case2" "$case3" "$case4" "$case5"; do
+  for f in "$case1" "$case2" "$case3" "$case4" "$case5" "$case6" "$case7"; do
     sed -i -e "s/^time: {start: 0, end: [0-9.e-]*}/time: {start: 0, end: $end}/" "$f"
   done
 fi
