@@ -15,15 +15,18 @@ int cmd_plot(const std::vector<std::string>& args) {
     kinds += "  " + k + std::string(10 - k.size(), ' ') + what + "\n";
   po::options_description opts(
       "usage: evas plot KIND RESULTS.h5 [--channel NAME]... [--element NAME] --out "
-      "FIGURE.png|svg\n\n"
+      "FIGURE.png|svg\n"
+      "       evas plot waterfall|campbell|order-cuts SWEEP.h5 [--channel NAME]... "
+      "[--order O]... --out FIGURE.png|svg\n\n"
       "Draws a figure of a run's results with gnuplot, PNG or SVG by the extension of\n"
       "--out, and leaves its gnuplot script and data beside it (FIGURE.gp, FIGURE.dat).\n"
       "Kinds:\n" +
       kinds + "\noptions");
   opts.add_options()("help,h", "show this help")(
       "channel", po::value<std::vector<std::string>>(&o.channels),
-      "channel name or glob (channels: repeatable; order, spectrum: one)")(
-      "element", po::value<std::string>(&o.element), "journal bearing (polar, orbit, film)")(
+      "channel name or glob (channels: repeatable; order, spectrum: one; erp: the surface "
+      "output's name)")("element", po::value<std::string>(&o.element),
+                        "journal bearing (polar, orbit, film)")(
       "out", po::value<std::string>(), "the figure: a file name ending in .png or .svg")(
       "cycles", po::value<int>(&o.cycles),
       "the last N whole cycles of a crank-angle grid (default 1; channels: 0, the whole "
@@ -37,6 +40,8 @@ int cmd_plot(const std::vector<std::string>& args) {
                                                 "spectrum: first time used [s]")(
       "to", po::value<double>(&o.spectrum.t1), "spectrum: last time used [s]")(
       "max-frequency", po::value<double>(&o.max_frequency), "spectrum: highest frequency [Hz]")(
+      "order", po::value<std::vector<double>>(&o.orders),
+      "order-cuts: an engine order to draw (repeatable; default 1, 2 and 4)")(
       "title", po::value<std::string>(&o.title), "the figure's title (default: the kind's own)");
   po::variables_map vm;
   if (parse_args(args, opts, {"kind", "results"}, vm)) return 0;

@@ -7,10 +7,12 @@
 #include <fstream>
 #include <iomanip>
 #include <iostream>
+#include <sstream>
 
 #include "apps/commands.h"
 #include "io/results.h"
 #include "model/types.h"
+#include "post/erp_spectrum.h"
 #include "post/order_spectrum.h"
 #include "post/time_spectrum.h"
 
@@ -53,10 +55,9 @@ void order_mode(const ResultsData& d, const std::string& path, int ic, int cycle
   }
 }
 
-void time_mode(const ResultsData& d, int ic, const TimeSpectrumOptions& o, double segment_s,
-               double max_f, const std::string& bands, const std::string& csv) {
-  std::vector<double> y(d.values.rows());
-  for (Eigen::Index r = 0; r < d.values.rows(); ++r) y[r] = d.values(r, ic);
+// The options with --segment S [s] turned into samples.
+TimeSpectrumOptions with_segment(const ResultsData& d, const TimeSpectrumOptions& o,
+                                 double segment_s) {
   TimeSpectrumOptions opt = o;
   if (segment_s > 0.0) {
     if (d.time.size() < 2) throw InputError("--segment: the record has fewer than 2 samples");
@@ -66,7 +67,86 @@ void time_mode(const ResultsData& d, int ic, const TimeSpectrumOptions& o, doubl
       throw InputError("--segment " + std::to_string(segment_s) +
                        " s is shorter than 4 samples (dt = " + std::to_string(dt) + " s)");
   }
-  const TimeSpectrum s = time_spectrum(d.time, y, opt);
+  return opt;
+}
+
+std::vector<double> column(const ResultsData& d, int ic) {
+  std::vector<double> y(static_cast<std::size_t>(d.values.rows()));
+  for (Eigen::Index r = 0; r < d.values.rows(); ++r)
+    y[static_cast<std::size_t>(r)] = d.values(r, ic);
+  return y;
+}
+
+// A level [dB re 1 pW], or "" for no power.
+std::string level_text(double p) {
+  if (!(p > 0.0)) return "";
+  std::ostringstream os;
+  os << std::fixed << std::setprecision(1) << erp_level(p);
+  return os.str();
+}
+
+// --erp NAME: the ERP spectrum of surface output NAME from its components NAME.c<k>.
+void erp_mode(const ResultsData& d, const std::string& path, const std::string& name,
+              const TimeSpectrumOptions& o, double segment_s, double max_f,
+              const std::string& bands, const std::string& csv) {
+  std::vector<std::vector<double>> comps;
+  for (int k = 0;; ++k) {
+    const auto it = std::find(d.names.begin(), d.names.end(), name + ".c" + std::to_string(k));
+    if (it == d.names.end()) break;
+    comps.push_back(column(d, static_cast<int>(it - d.names.begin())));
+  }
+  if (comps.empty()) {
+    std::string known;
+    for (const std::string& n : d.names)
+      if (n.size() > 4 && n.compare(n.size() - 4, 4, ".erp") == 0)
+        known += (known.empty() ? "" : ", ") + n.substr(0, n.size() - 4);
+    throw InputError(path + ": no surface output '" + name + "' (no channels " + name +
+                     ".c0, ...; surface outputs in the file: " +
+                     (known.empty() ? "none: add {surface: SET, body: B, name: N} to the "
+                                      "scene's output channels"
+                                    : known) +
+                     ")");
+  }
+  std::vector<ErpBand> bl;
+  const ErpSpectrum s =
+      erp_spectrum(d.time, comps, with_segment(d, o, segment_s), bands.empty() ? nullptr : &bl);
+  std::cout << "equivalent radiated power of " << name << ", t = " << s.t0 << " .. " << s.t1
+            << " s, " << o.window << " window, " << s.segments << " segment(s) of " << s.samples
+            << " samples, df = " << s.df << " Hz; mean ERP " << s.mean << " W ("
+            << level_text(s.mean) << " dB re 1 pW)\n";
+  std::ofstream f;
+  if (!csv.empty()) f = open_csv(csv);
+  if (!bands.empty()) {
+    std::cout << "  third-octave band [Hz]            ERP [W]   level [dB]   bins\n";
+    if (f) f << "centre[Hz],lower[Hz],upper[Hz],erp[W],level[dB re 1 pW],bins\n";
+    for (const ErpBand& b : bl) {
+      std::cout << std::setw(10) << std::setprecision(5) << b.centre << "  (" << std::setw(8)
+                << b.lower << " .. " << std::setw(8) << b.upper << ")  " << std::setw(13)
+                << std::setprecision(6) << b.power << std::setw(12) << level_text(b.power)
+                << std::setw(7) << b.bins << "\n";
+      if (f)
+        f << b.centre << "," << b.lower << "," << b.upper << "," << b.power << ","
+          << level_text(b.power) << "," << b.bins << "\n";
+    }
+  } else {
+    std::cout << "  frequency [Hz]   ERP [W]   level [dB]   density [W/Hz]\n";
+    if (f) f << "frequency[Hz],erp[W],level[dB re 1 pW],density[W/Hz]\n";
+    for (std::size_t k = 0; k < s.frequency.size(); ++k) {
+      if (max_f > 0.0 && s.frequency[k] > max_f) break;
+      std::cout << std::setw(16) << std::setprecision(6) << s.frequency[k] << std::setw(12)
+                << s.power[k] << std::setw(10) << level_text(s.power[k]) << std::setw(16)
+                << s.density[k] << "\n";
+      if (f)
+        f << s.frequency[k] << "," << s.power[k] << "," << level_text(s.power[k]) << ","
+          << s.density[k] << "\n";
+    }
+  }
+}
+
+void time_mode(const ResultsData& d, int ic, const TimeSpectrumOptions& o, double segment_s,
+               double max_f, const std::string& bands, const std::string& csv) {
+  const std::vector<double> y = column(d, ic);
+  const TimeSpectrum s = time_spectrum(d.time, y, with_segment(d, o, segment_s));
   const std::string& unit = d.units[ic];
   const std::string u = unit.empty() ? "1" : unit;
   std::cout << "spectrum over time of " << d.names[ic] << " [" << u << "], t = " << s.t0 << " .. "
@@ -115,7 +195,8 @@ int cmd_spectrum(const std::vector<std::string>& args) {
   po::options_description opts(
       "usage: evas spectrum RESULTS.h5 --channel NAME [--cycles N] [--csv FILE]\n"
       "       evas spectrum RESULTS.h5 --channel NAME --time [--window W] [--from T0]\n"
-      "                     [--to T1] [--segment S] [--overlap F] [--bands third-octave]\n\n"
+      "                     [--to T1] [--segment S] [--overlap F] [--bands third-octave]\n"
+      "       evas spectrum RESULTS.h5 --erp NAME [the --time options]\n\n"
       "Order spectrum of one output channel over whole engine cycles taken from the end\n"
       "of the record: by default every whole cycle, the start-up transient included; give\n"
       "--cycles N for the last N only. The run must use the crank-angle output grid\n"
@@ -128,6 +209,10 @@ int cmd_spectrum(const std::vector<std::string>& args) {
       "averages overlapping segments of S seconds (Welch); --bands third-octave sums the\n"
       "PSD into third-octave bands (IEC 61260-1 base-10 mid-band frequencies) and prints\n"
       "each band's RMS value.\n\n"
+      "With --erp NAME (a spectrum over time): the equivalent radiated power of the\n"
+      "surface output NAME ({surface: SET, ...}), from its components NAME.c<k>: per bin\n"
+      "the power [W] of a harmonic there and the density [W/Hz], or per third-octave\n"
+      "band the power [W]; levels in dB re 1 pW.\n\n"
       "options");
   opts.add_options()("help,h", "show this help")("channel", po::value<std::string>(),
                                                  "channel name, e.g. main1.fy")(
@@ -136,6 +221,8 @@ int cmd_spectrum(const std::vector<std::string>& args) {
       "cycle", po::value<double>(&cycle)->default_value(720.0), "cycle length [deg]")(
       "max-order", po::value<double>(&max_order)->default_value(12.0), "highest order listed")(
       "time", "spectrum over time instead of over engine orders")(
+      "erp", po::value<std::string>(),
+      "equivalent radiated power of a surface output, over time (implies --time)")(
       "window", po::value<std::string>(&t.window)->default_value("hann"),
       "--time: rectangular, hann or flattop (flattop: amplitudes between bins)")(
       "from", po::value<double>(&t.t0), "--time: first time used [s] (default: the start)")(
@@ -151,11 +238,12 @@ int cmd_spectrum(const std::vector<std::string>& args) {
       "or the bands)");
   po::variables_map vm;
   if (parse_args(args, opts, {"results"}, vm)) return 0;
-  if (!vm.count("results") || !vm.count("channel")) {
-    std::cerr << "evas spectrum: need RESULTS.h5 and --channel NAME\n" << opts << "\n";
+  if (!vm.count("results") || (vm.count("channel") + vm.count("erp")) != 1) {
+    std::cerr << "evas spectrum: need RESULTS.h5 and either --channel NAME or --erp NAME\n"
+              << opts << "\n";
     return 1;
   }
-  const bool over_time = vm.count("time") > 0;
+  const bool over_time = vm.count("time") > 0 || vm.count("erp") > 0;
   for (const char* k : {"from", "to", "segment", "max-frequency", "bands"})
     if (vm.count(k) && !over_time)
       throw InputError(std::string("--") + k + " applies to a spectrum over time: add --time");
@@ -184,6 +272,12 @@ int cmd_spectrum(const std::vector<std::string>& args) {
   if (vm.count("bands") && bands != "third-octave")
     throw InputError("--bands '" + bands + "': the bands known are third-octave");
   const std::string path = vm["results"].as<std::string>();
+  if (vm.count("erp")) {
+    const ResultsData d = read_results(path);
+    erp_mode(d, path, vm["erp"].as<std::string>(), t, segment, max_f, bands,
+             vm.count("csv") ? vm["csv"].as<std::string>() : "");
+    return 0;
+  }
   const std::string name = vm["channel"].as<std::string>();
   const ResultsData d = read_results(path);
   int ic = -1;

@@ -34,6 +34,10 @@ ModalBody reduce_body(const ModalBody& body, const ReduceOptions& opt) {
   std::set<int> keep;
   auto keep_set = [&](const std::string& name, const std::vector<long>& ids) {
     out.node_sets[name] = ids;
+    if (const auto sf = body.surfaces.find(name); sf != body.surfaces.end()) {
+      out.surfaces[name] = sf->second;
+      for (long id : sf->second.nodes) keep.insert(row.at(id));
+    }
     for (long id : ids) keep.insert(row.at(id));  // validate(): set members are nodes
   };
   if (opt.all_sets) {

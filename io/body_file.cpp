@@ -182,6 +182,19 @@ void write_body(hid_t file, const ModalBody& body) {
       h5::write_int64s(g, name, {static_cast<hsize_t>(v.size())}, v.data(), kStoreCompressed);
     }
   }
+  if (!body.surfaces.empty()) {
+    // per surface set: node ids, areas [m^2], outward unit normals (N x 3)
+    h5::Handle g = h5::create_group(file, "surfaces");
+    for (const auto& [name, sf] : body.surfaces) {
+      h5::Handle sg = h5::create_group(g, name);
+      const auto ns = static_cast<hsize_t>(sf.nodes.size());
+      std::vector<long long> v(sf.nodes.begin(), sf.nodes.end());
+      h5::write_int64s(sg, "nodes", {ns}, v.data(), kStoreCompressed);
+      h5::write_doubles(sg, "area", {ns}, sf.area.data(), kStoreCompressed);
+      RowMat nrm = sf.normal;
+      h5::write_doubles(sg, "normal", {ns, 3}, nrm.data(), kStoreCompressed);
+    }
+  }
   if (body.invariants) {
     const ModalInvariants& inv = *body.invariants;
     h5::Handle g = h5::create_group(file, "invariants");
@@ -403,6 +416,37 @@ ModalBody read_body(hid_t file) {
       if (const auto rep = repeat_in_sorted(members))
         throw h5::Failure("dataset '" + path + "' repeats node id " + std::to_string(*rep));
       body.node_sets[name].assign(set.begin(), set.end());
+    }
+  }
+
+  // Surface sets (optional group): areas and normals of mesh-face node sets.
+  if (h5::exists(file, "/surfaces")) {
+    h5::Handle g = h5::open_group(file, "/surfaces");
+    for (const std::string& name : h5::list_links(g)) {
+      const std::string path = "/surfaces/" + name;
+      if (!body.node_sets.count(name))
+        throw h5::Failure("group '" + path + "' has no node set '/sets/" + name + "'");
+      const std::vector<long long> ids = read_int64s(file, path + "/nodes", dims);
+      if (dims.size() != 1)
+        throw h5::Failure("dataset '" + path + "/nodes' must be one-dimensional");
+      const hsize_t ns = dims[0];
+      for (long long id : ids)
+        if (!std::binary_search(sorted_ids.begin(), sorted_ids.end(), static_cast<long>(id)))
+          throw h5::Failure("dataset '" + path + "/nodes' names node " + std::to_string(id) +
+                            ", which is not in '/nodes/ids'");
+      const std::vector<hsize_t> want_area = {ns}, want_normal = {ns, 3};
+      const std::vector<double> area = read_doubles(file, path + "/area", dims, &want_area);
+      const std::vector<double> normal = read_doubles(file, path + "/normal", dims, &want_normal);
+      SurfaceSet sf;
+      sf.nodes.assign(ids.begin(), ids.end());
+      sf.area = Eigen::Map<const Vec>(area.data(), static_cast<Eigen::Index>(ns));
+      sf.normal = Eigen::Map<const RowMat>(normal.data(), static_cast<Eigen::Index>(ns), 3);
+      try {
+        sf.validate("surface set '" + name + "'");
+      } catch (const InputError& e) {
+        throw h5::Failure(std::string("group '") + path + "': " + e.what());
+      }
+      body.surfaces.emplace(name, std::move(sf));
     }
   }
 

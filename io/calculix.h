@@ -65,6 +65,14 @@ InpMesh read_inp(const std::string& path);
 /// Element types that carry mass and stiffness in 3-D (C3D*).
 bool is_solid_element(const std::string& type);
 
+/// Per-node areas [m^2] and outward unit normals of every element set of the
+/// mesh made of 2-D (face) elements only, keyed by set name
+/// (io/calculix_surface.cpp: tributary shares of each face's area, outward
+/// from the solid element behind it). `path` names the deck in errors: a face
+/// with no solid behind it or between two solids, a degenerate face.
+std::map<std::string, SurfaceSet> mesh_surfaces(const InpMesh& mesh, const UnitSystem& units,
+                                                const std::string& path);
+
 /// FeModel from ccx matrix storage. `sti` may be empty (K is then left empty,
 /// e.g. when only the mass is wanted). Nodes are those of `mesh` that carry
 /// DOF in the .dof file, in the mesh's order; every such node must carry all

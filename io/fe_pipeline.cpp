@@ -315,8 +315,10 @@ PipelineResult run_pipeline(const PipelineParams& p, bool verbose) {
     run_gmsh(p.geometry, p.params, p.mesh_size, gmsh_inp, (fs::path(dir) / "gmsh.log").string());
   });
   InpMesh mesh;
+  std::map<std::string, SurfaceSet> surfaces;
   stage("read mesh, write decks", [&] {
     mesh = read_inp(gmsh_inp);
+    surfaces = mesh_surfaces(mesh, units, gmsh_inp);
     write_ccx_mesh((fs::path(dir) / "mesh.inp").string(), mesh);
     write_ccx_deck(dir, "matrices", "mesh.inp", p.youngs, p.poisson, p.density, true, 0);
   });
@@ -333,6 +335,9 @@ PipelineResult run_pipeline(const PipelineParams& p, bool verbose) {
         "  mesh: %d nodes, %d DOF, K %ld non-zeros\n", static_cast<int>(res.fe.node_ids.size()),
         3 * static_cast<int>(res.fe.node_ids.size()), static_cast<long>(res.fe.K.nonZeros()));
   stage("evas eigen-solution", [&] { res.body = build_modal_body(p.name, res.fe, p.build); });
+  // the areas and normals of the body's sets that are mesh faces (ERP outputs)
+  for (auto& [name, s] : surfaces)
+    if (res.body.node_sets.count(name)) res.body.surfaces.emplace(name, std::move(s));
   if (!p.interface_sets.empty())
     stage("interface modes", [&] {
       InterfaceOptions io;

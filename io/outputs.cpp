@@ -136,6 +136,23 @@ OutputSet::OutputSet(const OutputSpec& spec, System& system, double t_start, dou
           channels_.push_back({req.name + "." + c, "rad/s"});
         break;
       }
+      case ChannelRequest::Kind::Surface: {
+        const Body& b = model.bodies().at(req.index);
+        src.surface = static_cast<int>(surfaces_.size());
+        surfaces_.emplace_back(
+            *b.data, *req.surface, req.rho_c, req.per_node,
+            "output: surface '" + req.name + "' (body '" + b.name + "', set '" + req.set + "')");
+        const SurfaceRadiation& sr = surfaces_.back();
+        channels_.push_back({req.name + ".vn_mean", "m/s"});
+        channels_.push_back({req.name + ".vn_rms", "m/s"});
+        channels_.push_back({req.name + ".erp", "W"});
+        for (int k = 0; k < sr.components(); ++k)
+          channels_.push_back({req.name + ".c" + std::to_string(k), "W^0.5"});
+        if (req.per_node)
+          for (long id : req.surface->nodes)
+            channels_.push_back({req.name + ".vn_" + std::to_string(id), "m/s"});
+        break;
+      }
     }
     sources_.push_back(src);
     if (req.kind == ChannelRequest::Kind::Marker) markers_.push_back(req.index);
@@ -151,7 +168,7 @@ OutputSet::OutputSet(const OutputSpec& spec, System& system, double t_start, dou
     const auto twice = std::adjacent_find(names.begin(), names.end());
     if (twice != names.end())
       throw InputError("output: two channels are named '" + *twice +
-                       "': give the torsion request another 'name'");
+                       "': give the torsion or surface request another 'name'");
   }
   std::sort(markers_.begin(), markers_.end());
   markers_.erase(std::unique(markers_.begin(), markers_.end()), markers_.end());
@@ -230,6 +247,11 @@ void OutputSet::values(double t, const double* q, const double* v, double* out,
         o[3] = tr.a.dot(vb);
         o[4] = tr.b.dot(vb);
         o[5] = o[4] - o[3];
+        break;
+      }
+      case ChannelRequest::Kind::Surface: {
+        const Body& b = model.bodies()[src.index];
+        surfaces_[static_cast<std::size_t>(src.surface)].evaluate(b.lof.at(t), v + b.offset, o);
         break;
       }
     }

@@ -10,6 +10,10 @@
 //                  n . (B_theta q) of marker A and B (the rotation of the
 //                  marker's rigid fit), N.twist = angle_b - angle_a [rad], and
 //                  N.rate_a, N.rate_b, N.twist_rate [rad/s] the same with v
+//   {surface: S, body: B, name: N}  normal velocity and ERP of node set S of
+//                  body B (model/surface.h): N.vn_mean, N.vn_rms [m/s], N.erp
+//                  [W], N.c<k> [W^0.5] (ERP = sum c_k^2), with per_node
+//                  N.vn_<node id> [m/s]
 // On the crank-angle grid a first channel "crank_angle" [deg] holds the LOF
 // spin angle of the crank body.
 // A constrained system (Problem::constraint_count() > 0) adds, after those, per
@@ -27,6 +31,7 @@
 
 #include "io/scene.h"
 #include "model/element.h"
+#include "model/surface.h"
 #include "solver/system.h"
 
 namespace evas {
@@ -62,7 +67,9 @@ class OutputSet {
     unsigned quantities;  // marker: ChannelRequest::Quantity bits
     bool local;           // marker: components in its own axes
     int torsion = -1;     // torsion: index into torsion_
+    int surface = -1;     // surface: index into surfaces_
   };
+  std::vector<SurfaceRadiation> surfaces_;
   // A torsion request: the body's coordinates from `offset`, and the rows
   // n^T B_theta of its two markers (angle = row . q).
   struct Torsion {

@@ -18,7 +18,7 @@ namespace evas {
 
 /// One `output.channels` entry, resolved against the model.
 struct ChannelRequest {
-  enum class Kind { Marker, Element, Modal, Torsion };
+  enum class Kind { Marker, Element, Modal, Torsion, Surface };
   /// What a marker request gives (bits): position, velocity, acceleration,
   /// angular velocity, angular acceleration.
   enum Quantity : unsigned {
@@ -39,6 +39,15 @@ struct ChannelRequest {
   /// prefix; `axis` the twist axis in the body's axes (zero: its LOF's spin axis).
   int index2 = -1;
   Vec3 axis = Vec3::Zero();
+  /// Surface requests ({surface: SET, body: B, name: N, ...}, docs/theory.md
+  /// section 8.3): `index` is body B, `set` its node set, `surface` the set's
+  /// areas and normals (the body file's, or given in the scene), `rho_c` the
+  /// characteristic impedance of the fluid [kg/(m^2 s)], `per_node` adds the
+  /// normal velocity of every node.
+  std::string set;
+  std::shared_ptr<const SurfaceSet> surface;
+  double rho_c = 413.0;
+  bool per_node = false;
 };
 
 struct OutputSpec {

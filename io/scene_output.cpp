@@ -114,6 +114,18 @@ OutputSpec SceneReader::read_output(const Node& n, const Model& model, double t_
     for (std::size_t i = 0; i < ch.size(); ++i) {
       const Node c = ch[i];
       const std::string ci = "output.channels[" + std::to_string(i) + "]";
+      if (c.IsMap() && c["surface"]) {
+        out.channels.push_back(read_surface(c, ci, model));
+        const auto [at, fresh] =
+            requested.emplace(std::make_pair(static_cast<int>(ChannelRequest::Kind::Surface),
+                                             out.channels.back().name),
+                              i);
+        if (!fresh)
+          fail(c, ci,
+               "repeats the name of output.channels[" + std::to_string(at->second) + "] ('" +
+                   out.channels.back().name + "'): give each surface request its own 'name'");
+        continue;
+      }
       check_keys(c, ci,
                  {"marker", "element", "modal", "torsion", "quantities", "frame", "name", "axis"});
       if (c["torsion"]) {
@@ -134,7 +146,7 @@ OutputSpec SceneReader::read_output(const Node& n, const Model& model, double t_
       if (extra && !c["marker"])
         fail(c, ci, "'quantities' and 'frame' belong to a marker request ({marker: NAME, ...})");
       if (c.size() != 1 + extra)
-        fail(c, ci, "give exactly one of 'marker', 'element', 'modal' and 'torsion'");
+        fail(c, ci, "give exactly one of 'marker', 'element', 'modal', 'torsion' and 'surface'");
       ChannelRequest req;
       req.line = c.Mark().line + 1;
       std::vector<std::string> names;
@@ -270,6 +282,94 @@ ChannelRequest SceneReader::read_torsion(const Node& c, const std::string& ci,
          "body '" + body.name +
              "' has no spin LOF to take the twist axis from: give 'axis' (in the body's axes)");
   }
+  return req;
+}
+
+}  // namespace evas::scene_detail
+
+namespace evas::scene_detail {
+
+ChannelRequest SceneReader::read_surface(const Node& c, const std::string& ci,
+                                         const Model& model) const {
+  check_keys(c, ci, {"surface", "body", "name", "rho_c", "normal", "area", "areas", "per_node"});
+  ChannelRequest req;
+  req.kind = ChannelRequest::Kind::Surface;
+  req.line = c.Mark().line + 1;
+  req.set = text(c["surface"], ci, "surface");
+  const std::string bname = text(require(c, "body", ci), ci, "body");
+  std::vector<std::string> names;
+  for (std::size_t k = 0; k < model.bodies().size(); ++k) {
+    names.push_back(model.bodies()[k].name);
+    if (names.back() == bname) req.index = static_cast<int>(k);
+  }
+  if (req.index < 0)
+    fail(c["body"], ci, "no body named '" + bname + "' (known: " + join(names) + ")");
+  const ModalBody& body = *model.bodies()[req.index].data;
+  const auto set = body.node_sets.find(req.set);
+  if (set == body.node_sets.end()) {
+    std::vector<std::string> sets;
+    for (const auto& [name, ids] : body.node_sets) sets.push_back(name);
+    fail(c["surface"], ci,
+         body.label() + " has no node set '" + req.set +
+             "' (known: " + (sets.empty() ? std::string("none") : join(sets)) + ")");
+  }
+  req.name = c["name"] ? text(c["name"], ci, "name") : req.set;
+  if (req.name.empty() || req.name.find_first_of(" .,\t") != std::string::npos)
+    fail(c["name"] ? c["name"] : c["surface"], ci,
+         c["name"] ? "'name' must be a word without spaces, dots or commas"
+                   : "the default name '" + req.name +
+                         "' (the set's) is not a word without spaces, dots or commas: give "
+                         "'name'");
+  if (c["rho_c"]) req.rho_c = number_in(c["rho_c"], ci, "rho_c", 0.0, 1e7, true);
+  if (c["per_node"]) req.per_node = boolean(c["per_node"], ci, "per_node");
+  const auto stored = body.surfaces.find(req.set);
+  const bool given = c["normal"] || c["area"] || c["areas"];
+  if (stored != body.surfaces.end()) {
+    if (given)
+      fail(c, ci,
+           body.label() + " holds the areas and normals of set '" + req.set +
+               "' from its FE mesh: leave out 'normal', 'area' and 'areas'");
+    req.surface = std::make_shared<const SurfaceSet>(stored->second);
+  } else {
+    if (!c["normal"] || (!c["area"] && !c["areas"])) {
+      std::vector<std::string> with;
+      for (const auto& [name, s] : body.surfaces) with.push_back(name);
+      fail(c, ci,
+           body.label() + " holds no areas and normals for set '" + req.set +
+               "' (it holds them for: " + (with.empty() ? std::string("no set") : join(with)) +
+               "; `evas modal build` stores them for every set of mesh faces): give 'normal' "
+               "(the outward normal, in the body's axes) and 'area' (the set's total area "
+               "[m^2], shared equally by its nodes) or 'areas' (one per node [m^2])");
+    }
+    if (c["area"] && c["areas"]) fail(c, ci, "give 'area' or 'areas', not both");
+    auto s = std::make_shared<SurfaceSet>();
+    s->nodes = set->second;
+    const auto n = static_cast<Eigen::Index>(s->nodes.size());
+    Vec3 nn = vec3(c["normal"], ci, "normal");
+    if (!(nn.norm() > 0.0)) fail(c["normal"], ci, "'normal' must not be zero");
+    nn.normalize();
+    s->normal.resize(n, 3);
+    for (Eigen::Index i = 0; i < n; ++i) s->normal.row(i) = nn.transpose();
+    if (c["area"]) {
+      const double a = number_in(c["area"], ci, "area", 0.0, 1e6, true);
+      s->area = Vec::Constant(n, a / static_cast<double>(n));
+    } else {
+      const Node as = c["areas"];
+      if (!as.IsSequence() || static_cast<Eigen::Index>(as.size()) != n)
+        fail(as, ci,
+             "'areas' must list one area [m^2] per node of set '" + req.set + "' (" +
+                 std::to_string(n) + " nodes)");
+      s->area.resize(n);
+      for (Eigen::Index i = 0; i < n; ++i)
+        s->area[i] = number_in(as[static_cast<std::size_t>(i)], ci, "areas", 0.0, 1e6);
+      if (!(s->area.sum() > 0.0)) fail(as, ci, "'areas' sum to 0");
+    }
+    req.surface = std::move(s);
+  }
+  if (req.per_node && req.surface->nodes.size() > 5000)
+    fail(c["per_node"], ci,
+         "set '" + req.set + "' has " + std::to_string(req.surface->nodes.size()) +
+             " nodes: per_node writes one channel per node, at most 5000");
   return req;
 }
 

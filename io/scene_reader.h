@@ -213,6 +213,9 @@ class SceneReader {
   IntegratorSettings read_integrator(const Node& n) const;
   /// An output request {torsion: [A, B], name: N, axis: [x, y, z]} (io/outputs.h).
   ChannelRequest read_torsion(const Node& c, const std::string& ci, const Model& model) const;
+  /// An output request {surface: SET, body: B, name: N, rho_c: Z, normal: [..],
+  /// area: A | areas: [..], per_node: bool} (model/surface.h).
+  ChannelRequest read_surface(const Node& c, const std::string& ci, const Model& model) const;
   OutputSpec read_output(const Node& n, const Model& model, double t_start, double t_end) const;
 
   std::string file_;

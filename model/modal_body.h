@@ -20,6 +20,7 @@
 #include <string>
 #include <vector>
 
+#include "model/surface.h"
 #include "model/types.h"
 
 namespace evas {
@@ -47,6 +48,9 @@ struct ModalBody {
   Vec damping;                  ///< n, modal damping c_k [1/s] (c_k = 2 zeta_k omega_k)
   std::vector<ModeKind> kinds;  ///< n, rigid or elastic
   std::map<std::string, std::vector<long>> node_sets;  ///< named sets of node ids
+  /// Per-node areas and outward normals of the sets that lie on the FE mesh's
+  /// surface (model/surface.h), keyed like node_sets; optional.
+  std::map<std::string, SurfaceSet> surfaces;
 
   // Data of the full body (format version 2, optional). When present they were
   // computed from the full node set and mass matrix, and Model::add_body uses

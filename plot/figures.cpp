@@ -12,6 +12,8 @@
 #include "io/results.h"
 #include "model/types.h"
 #include "plot/gnuplot.h"
+#include "plot/sweep_figures.h"
+#include "post/erp_spectrum.h"
 #include "post/order_spectrum.h"
 
 namespace evas {
@@ -50,6 +52,25 @@ Scale display(const std::string& unit) {
   if (unit == "m") return {1e6, "\u00b5m"};
   if (unit == "N m") return {1.0, "N m"};
   return {1.0, unit.empty() ? "-" : unit};
+}
+
+// The quantity a unit measures, for an axis label ("" when not known).
+std::string quantity(const std::string& unit) {
+  static const std::vector<std::pair<std::string, std::string>> q = {
+      {"N", "force"},
+      {"N m", "torque"},
+      {"W", "power"},
+      {"m/s", "velocity"},
+      {"m/s^2", "acceleration"},
+      {"rad", "angle"},
+      {"rad/s", "angular velocity"},
+      {"rad/s^2", "angular acceleration"},
+      {"Pa", "pressure"},
+      {"m", "displacement"},
+      {"deg", "angle"}};
+  for (const auto& [u, name] : q)
+    if (u == unit) return name;
+  return "";
 }
 
 // The results file, its channels by name, and the rows a figure uses.
@@ -142,17 +163,6 @@ class Record {
   int crank_ = -1;
 };
 
-std::string terminal(const fs::path& out, int w, int h) {
-  const std::string ext = out.extension().string();
-  std::ostringstream gp;
-  if (ext == ".svg")
-    gp << "set terminal svg noenhanced size " << w << "," << h << " dynamic font 'Helvetica,13'\n";
-  else
-    gp << "set terminal pngcairo noenhanced size " << w << "," << h << " font ',11'\n";
-  gp << "set output " << gp_quote(out.filename().string()) << "\n";
-  return gp.str();
-}
-
 // Crank angle within the cycle [0, cycle), or time; and its axis label.
 struct Axis {
   bool crank = false;
@@ -209,8 +219,11 @@ void plot_channels(const Record& rec, const PlotOptions& o, const fs::path& out,
   std::string units;
   for (int i : idx) {
     sc.push_back(display(d.units[i]));
-    if (units.find("[" + sc.back().unit + "]") == std::string::npos)
-      units += (units.empty() ? "" : " ") + ("[" + sc.back().unit + "]");
+    if (units.find("[" + sc.back().unit + "]") == std::string::npos) {
+      const std::string what = quantity(d.units[i]);
+      units += (units.empty() ? "" : ", ") + (what.empty() ? "" : what + " ") + "[" +
+               sc.back().unit + "]";
+    }
   }
   for (Eigen::Index r = r0; r < d.values.rows(); ++r) {
     f.dat << num(ax.crank ? rec.crank(r) : d.time[r]);
@@ -218,7 +231,7 @@ void plot_channels(const Record& rec, const PlotOptions& o, const fs::path& out,
       f.dat << " " << num(sc[k].factor * d.values(r, idx[k]));
     f.dat << "\n";
   }
-  f.gp << terminal(out, 1000, 600) << "set title "
+  f.gp << gp_terminal(out, 1000, 600) << "set title "
        << gp_quote(o.title.empty() ? rec.name() + ": channels" : o.title) << "\n"
        << "set xlabel " << gp_quote(ax.label) << "\nset ylabel " << gp_quote(units) << "\n"
        << "set grid\nset autoscale xfix\nset key outside right top\nplot ";
@@ -263,7 +276,7 @@ void plot_polar(const Record& rec, const PlotOptions& o, const fs::path& out, Fi
     }
   const std::string span =
       rec.has_crank() && o.cycles > 0 ? ", last " + std::to_string(o.cycles) + " cycle(s)" : "";
-  f.gp << terminal(out, 1300, 650) << "set multiplot layout 1,2 title "
+  f.gp << gp_terminal(out, 1300, 650) << "set multiplot layout 1,2 title "
        << gp_quote(o.title.empty() ? "polar load diagram of " + o.element + " (" + rec.name() +
                                          span + "; labels: crank angle in the cycle [deg])"
                                    : o.title)
@@ -309,7 +322,7 @@ void plot_orbit(const Record& rec, const PlotOptions& o, const fs::path& out, Fi
           << "\n";
   const std::string span =
       rec.has_crank() && o.cycles > 0 ? ", last " + std::to_string(o.cycles) + " cycle(s)" : "";
-  f.gp << terminal(out, 800, 800) << "set title "
+  f.gp << gp_terminal(out, 800, 800) << "set title "
        << gp_quote(o.title.empty()
                        ? "journal orbit of " + o.element + " (" + rec.name() + span + ")"
                        : o.title)
@@ -337,7 +350,7 @@ void plot_film(const Record& rec, const PlotOptions& o, const fs::path& out, Fig
     f.dat << num(x) << " " << num(1e6 * d.values(r, h)) << " " << num(1e-6 * d.values(r, p))
           << "\n";
   }
-  f.gp << terminal(out, 1000, 600) << "set title "
+  f.gp << gp_terminal(out, 1000, 600) << "set title "
        << gp_quote(o.title.empty() ? "oil film of " + o.element + " (" + rec.name() + ")" : o.title)
        << "\nset xlabel " << gp_quote(ax.label)
        << "\nset ylabel 'minimum film thickness h_min [\u00b5m]'\nset y2label 'peak film pressure "
@@ -368,7 +381,7 @@ void plot_order(const Record& rec, const PlotOptions& o, const fs::path& out, Fi
   const Scale sc = display(d.units[c]);
   for (std::size_t k = 0; k < s.order.size(); ++k)
     f.dat << num(s.order[k]) << " " << num(sc.factor * s.amplitude[k]) << "\n";
-  f.gp << terminal(out, 1000, 600) << "set title "
+  f.gp << gp_terminal(out, 1000, 600) << "set title "
        << gp_quote(o.title.empty() ? "order spectrum of " + d.names[c] + " (" + rec.name() + ", " +
                                          std::to_string(s.cycles) + " cycle(s))"
                                    : o.title)
@@ -399,7 +412,7 @@ void plot_spectrum(const Record& rec, const PlotOptions& o, const fs::path& out,
                      " Hz is below the first bin (df = " + num(s.df) + " Hz)");
   if (!(top > 0.0))
     throw InputError(rec.name() + ": " + d.names[c] + " is constant over the window");
-  f.gp << terminal(out, 1000, 600) << "set title "
+  f.gp << gp_terminal(out, 1000, 600) << "set title "
        << gp_quote(o.title.empty()
                        ? "spectrum of " + d.names[c] + " (" + rec.name() +
                              ", t = " + short_num(s.t0) + " .. " + short_num(s.t1) + " s, " +
@@ -408,6 +421,92 @@ void plot_spectrum(const Record& rec, const PlotOptions& o, const fs::path& out,
        << "\nset xlabel 'frequency [Hz]'\nset ylabel " << gp_quote("amplitude [" + sc.unit + "]")
        << "\nset logscale y\nset yrange [" << num(top * 1e-5) << ":" << num(top * 2) << "]\n"
        << "set grid\nunset key\nplot " << dat_name(out) << " using 1:2 with lines lw 1.2 lc 1\n";
+}
+
+// ERP of a surface output: the tonal power per bin and the third-octave band
+// powers, as levels [dB re 1 pW] (post/erp_spectrum.h).
+void plot_erp(const Record& rec, const PlotOptions& o, const fs::path& out, Figure& f) {
+  if (o.channels.size() != 1)
+    throw InputError("plot erp: give one --channel NAME, the surface output's name");
+  const std::string& name = o.channels[0];
+  const ResultsData& d = rec.data();
+  std::vector<std::vector<double>> comps;
+  for (int k = 0;; ++k) {
+    const int c = rec.find(name + ".c" + std::to_string(k));
+    if (c < 0) break;
+    comps.emplace_back(static_cast<std::size_t>(d.values.rows()));
+    for (Eigen::Index r = 0; r < d.values.rows(); ++r)
+      comps.back()[static_cast<std::size_t>(r)] = d.values(r, c);
+  }
+  if (comps.empty()) rec.require(name + ".c0", " (the ERP components of a surface output)");
+  std::vector<ErpBand> bands;
+  const ErpSpectrum s = erp_spectrum(d.time, comps, o.spectrum, &bands);
+  const double fmax = o.max_frequency > 0.0 ? o.max_frequency : s.frequency.back();
+  double top = 0.0;
+  for (std::size_t k = 1; k < s.frequency.size() && s.frequency[k] <= fmax; ++k)
+    if (s.power[k] > 0.0) {
+      f.dat << num(s.frequency[k]) << " " << num(erp_level(s.power[k])) << "\n";
+      top = std::max(top, erp_level(s.power[k]));
+    }
+  if (!(top != 0.0)) throw InputError(rec.name() + ": " + name + " radiates no power");
+  f.dat << "\n\n";  // second data block: the bands as steps
+  for (const ErpBand& b : bands)
+    if (b.bins > 0 && b.power > 0.0 && b.lower <= fmax) {
+      f.dat << num(b.lower) << " " << num(erp_level(b.power)) << "\n";
+      f.dat << num(b.upper) << " " << num(erp_level(b.power)) << "\n\n";
+      top = std::max(top, erp_level(b.power));
+    }
+  f.gp << gp_terminal(out, 1000, 600) << "set title "
+       << gp_quote(o.title.empty()
+                       ? "equivalent radiated power of " + name + " (" + rec.name() +
+                             ", t = " + short_num(s.t0) + " .. " + short_num(s.t1) + " s, " +
+                             o.spectrum.window + " window, df = " + short_num(s.df) + " Hz; mean " +
+                             short_num(erp_level(s.mean)) + " dB)"
+                       : o.title)
+       << "\nset xlabel 'frequency [Hz]'\nset ylabel 'ERP level [dB re 1 pW]'\n"
+       << "set logscale x\nset xrange [" << num(std::max(s.df, 10.0)) << ":" << num(fmax)
+       << "]\nset yrange [" << num(top - 80.0) << ":" << num(top + 5.0) << "]\n"
+       << "set grid\nset key top right\nplot " << dat_name(out)
+       << " index 0 using 1:2 with impulses lw 1.5 lc 1 title 'per bin (tonal power)', "
+       << dat_name(out) << " index 1 using 1:2 with lines lw 2.5 lc 2 title 'third-octave bands'\n";
+}
+
+// waterfall, campbell, order-cuts of a sweep file (plot/sweep_figures.h).
+std::vector<std::string> plot_sweep_file(const std::string& path, const PlotOptions& o,
+                                         const fs::path& out) {
+  const SweepFigureData d = read_sweep_figures(
+      path, "plot " + o.kind + ": a " + (o.kind == "order-cuts" ? "set of order cuts" : o.kind) +
+                " is drawn from a sweep over operating points");
+  if (!has_spectra(d))
+    throw InputError(path +
+                     ": the sweep holds no order spectra (no completed run on the "
+                     "crank-angle grid with the cycles asked for)");
+  std::vector<int> chans;
+  for (const auto& c : o.channels) chans.push_back(sweep_channel(d, c, path));
+  if (o.kind == "campbell" && !chans.empty())
+    throw InputError("plot campbell: --channel does not apply (the diagram has no channel)");
+  if (chans.empty()) chans.push_back(0);
+  if (o.kind == "waterfall" && chans.size() != 1)
+    throw InputError("plot waterfall: give one --channel NAME");
+  Figure f;
+  if (o.kind == "waterfall") {
+    f.gp << waterfall_script(d, chans.front(), out);
+  } else if (o.kind == "campbell") {
+    const std::string c = campbell_script(d, out);
+    if (c.empty()) throw InputError(path + ": no task of the sweep has a crank speed");
+    f.gp << c;
+  } else {
+    const std::vector<double> orders = o.orders.empty() ? std::vector<double>{1, 2, 4} : o.orders;
+    for (double x : orders)
+      if (std::none_of(d.orders.begin(), d.orders.end(),
+                       [&](double y) { return std::abs(x - y) < 1e-9; }))
+        throw InputError("--order " + num(x) + ": the sweep's spectra hold orders 0.5 .. " +
+                         num(d.orders.empty() ? 0.0 : d.orders.back()) + " in steps of 0.5");
+    f.gp << order_cuts_script(d, chans, orders, out);
+  }
+  std::error_code ec;
+  if (out.has_parent_path()) fs::create_directories(out.parent_path(), ec);
+  return draw(out, f);
 }
 
 }  // namespace
@@ -420,16 +519,20 @@ const std::vector<std::pair<std::string, std::string>>& plot_kinds() {
       {"orbit", "journal orbit inside the clearance circle (--element)"},
       {"film", "minimum film thickness and peak pressure against crank angle (--element)"},
       {"order", "order spectrum of a channel (--channel) over whole cycles"},
-      {"spectrum", "amplitude spectrum of a channel (--channel) over frequency"}};
+      {"spectrum", "amplitude spectrum of a channel (--channel) over frequency"},
+      {"erp",
+       "equivalent radiated power of a surface output (--channel NAME): per bin and "
+       "in third-octave bands"},
+      {"waterfall", "order spectra of a channel (--channel) against the swept value (sweep.h5)"},
+      {"campbell", "natural frequencies against speed with the engine orders (sweep.h5)"},
+      {"order-cuts",
+       "amplitude of orders (--order) of channels (--channel) against the swept "
+       "value (sweep.h5)"}};
   return k;
 }
 
 std::vector<std::string> plot_results(const std::string& results, const PlotOptions& o,
                                       const fs::path& out) {
-  if (o.kind == "waterfall" || o.kind == "campbell")
-    throw InputError("plot " + o.kind + ": a " + o.kind +
-                     " is drawn from a sweep over speeds: `evas study sweep` draws " + o.kind +
-                     ".png into its folder; " + results + " is one run's results");
   bool known = false;
   std::string names;
   for (const auto& [k, what] : plot_kinds()) {
@@ -447,6 +550,8 @@ std::vector<std::string> plot_results(const std::string& results, const PlotOpti
     throw InputError("plot " + o.kind + ": --element applies to polar, orbit and film");
   if (!have_gnuplot())
     throw InputError("plot: gnuplot is not installed (apt-get install gnuplot-nox)");
+  if (o.kind == "waterfall" || o.kind == "campbell" || o.kind == "order-cuts")
+    return plot_sweep_file(results, o, out);
   const Record rec(results);
   Figure f;
   if (o.kind == "channels") plot_channels(rec, o, out, f);
@@ -455,6 +560,7 @@ std::vector<std::string> plot_results(const std::string& results, const PlotOpti
   if (o.kind == "film") plot_film(rec, o, out, f);
   if (o.kind == "order") plot_order(rec, o, out, f);
   if (o.kind == "spectrum") plot_spectrum(rec, o, out, f);
+  if (o.kind == "erp") plot_erp(rec, o, out, f);
   std::error_code ec;
   if (out.has_parent_path()) fs::create_directories(out.parent_path(), ec);
   return draw(out, f);

@@ -11,6 +11,10 @@
 //   film      minimum film thickness and peak film pressure against crank angle
 //   order     order spectrum of a channel over whole cycles
 //   spectrum  amplitude spectrum over frequency (post/time_spectrum.h)
+//   erp       equivalent radiated power of a surface output, per bin and in
+//             third-octave bands (post/erp_spectrum.h)
+// and of a sweep's sweep.h5 (plot/sweep_figures.h): waterfall, campbell,
+// order-cuts
 #pragma once
 
 #include <filesystem>
@@ -33,6 +37,7 @@ struct PlotOptions {
   double max_order = 12.0;  ///< order
   TimeSpectrumOptions spectrum;
   double max_frequency = 0.0;  ///< spectrum: highest frequency shown [Hz] (0: Nyquist)
+  std::vector<double> orders;  ///< order-cuts: the orders drawn (empty: 1, 2, 4)
   std::string title;           ///< "" for the kind's own title
 };
 

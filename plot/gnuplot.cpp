@@ -41,4 +41,15 @@ std::string gp_quote(const std::string& s) {
   return out + "'";
 }
 
+std::string gp_terminal(const std::filesystem::path& out, int w, int h) {
+  std::string gp;
+  if (out.extension() == ".svg")
+    gp = "set terminal svg noenhanced size " + std::to_string(w) + "," + std::to_string(h) +
+         " dynamic font 'Helvetica,13'\n";
+  else
+    gp = "set terminal pngcairo noenhanced size " + std::to_string(w) + "," + std::to_string(h) +
+         " font ',11'\n";
+  return gp + "set output " + gp_quote(out.filename().string()) + "\n";
+}
+
 }  // namespace evas

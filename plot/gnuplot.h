@@ -21,5 +21,9 @@ bool run_gnuplot(const std::vector<std::filesystem::path>& scripts);
 std::string gp_quote(const std::string& s);
 /// A POSIX shell word: '...' with ' written as '\''.
 std::string shell_quote(const std::string& s);
+/// The terminal lines of a figure `out` (w x h pixels): pngcairo for .png,
+/// svg otherwise; the output is named without its folder (run_gnuplot runs
+/// in the script's folder).
+std::string gp_terminal(const std::filesystem::path& out, int w, int h);
 
 }  // namespace evas

@@ -20,13 +20,18 @@ plot() {
   "$evas" plot "$kind" "$r" --out "$out/$name.png" "$@" > /dev/null
   echo "$out/$name.png"
 }
-plot channels bearing_loads --channel 'main*.fy' --cycles 1
+plot channels bearing_loads --channel 'main*.fy' --cycles 1 \
+  --title 'main-bearing loads: horizontal force on each journal (fy, bearing axes), last cycle'
 plot polar polar_main3 --element main3
 plot orbit orbit_main3 --element main3
 plot film film_main3 --element main3
-plot channels friction_power --channel 'main*.friction_power' --cycles 1
+plot channels friction_power --channel 'main*.friction_power' --cycles 1 \
+  --title 'main-bearing friction power (Petroff plus short-bearing film), last cycle'
 plot channels crank_torsion --channel 'crank.angle_a' --channel 'crank.angle_b' \
   --channel 'crank.twist' --cycles 1 \
   --title 'crankshaft torsion relative to its LOF: front main journal (a), flywheel (b), twist b - a'
 plot order order_main3_fy --channel main3.fy --cycles 2
 plot spectrum spectrum_main3_fy --channel main3.fy --window flattop --from 0.08 --max-frequency 1500
+plot channels surface_velocity --channel 'skin.vn_rms' --channel 'skin.vn_mean' --cycles 1 \
+  --title 'normal velocity of the block side walls: area-weighted RMS and mean over the set, last cycle'
+plot erp erp_side_walls --channel skin --from 0.08

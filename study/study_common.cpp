@@ -482,11 +482,4 @@ void plot_all(const Options& opt, const std::vector<Figure>& figures, StudyInfo&
   }
 }
 
-std::string gp_terminal(const fs::path& png, int w, int h) {
-  std::ostringstream gp;
-  gp << "set terminal pngcairo noenhanced size " << w << "," << h << "\n"
-     << "set output " << gp_quote(png.filename().string()) << "\n";
-  return gp.str();
-}
-
 }  // namespace evas::study::detail

@@ -130,7 +130,5 @@ struct Figure {
 /// plot() of figures of one folder with one gnuplot process; a figure that
 /// process did not draw is tried alone (and reported as plot() does).
 void plot_all(const Options& opt, const std::vector<Figure>& figures, StudyInfo& info);
-/// The pngcairo terminal and output lines of a script.
-std::string gp_terminal(const fs::path& png, int w, int h);
 
 }  // namespace evas::study::detail

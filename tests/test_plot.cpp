@@ -71,7 +71,8 @@ TEST(Plot, EveryKindDrawsPngAndSvgWithItsData) {
       {"orbit", r, "--element", "main3"},
       {"film", r, "--element", "main3"},
       {"order", r, "--channel", "main3.fy", "--cycles", "1"},
-      {"spectrum", r, "--channel", "main3.fy", "--window", "flattop"}};
+      {"spectrum", r, "--channel", "main3.fy", "--window", "flattop"},
+      {"erp", r, "--channel", "skin"}};
   for (const auto& k : kinds)
     for (const char* ext : {".png", ".svg"}) {
       SCOPED_TRACE(k[0] + ext);
@@ -137,12 +138,14 @@ TEST(Plot, FiguresTheFileCannotGiveAreErrorsNamingWhatIsThere) {
   for (const Bad& b : std::vector<Bad>{
            {{"polar", r, "--element", "cyl1"},
             "journal bearings in this file: main1, main2, main3, main4, main5"},
-           {{"waterfall", r}, "a waterfall is drawn from a sweep over speeds"},
+           {{"waterfall", r}, "a waterfall is drawn from a sweep over operating points"},
            {{"pie", r},
-            "unknown kind 'pie' (known: channels, polar, orbit, film, order, spectrum)"},
+            "unknown kind 'pie' (known: channels, polar, orbit, film, order, spectrum, erp, "
+            "waterfall, campbell, order-cuts)"},
            {{"channels", r, "--channel", "main9.*"},
             "no channel matches 'main9.*'; channels here: crank_angle"},
            {{"orbit", r}, "give --element NAME"},
+           {{"erp", r, "--channel", "main1"}, "no channel 'main1.c0' (the ERP components"},
            {{"film", r, "--element", "main1", "--cycles", "9"}, "less than 9 cycle(s)"},
            {{"order", r, "--channel", "main1.fy", "--element", "main1"},
             "--element applies to polar"}}) {
@@ -165,4 +168,48 @@ TEST(Plot, FiguresTheFileCannotGiveAreErrorsNamingWhatIsThere) {
            tmp.path() / "y.png");
   EXPECT_EQ(o.code, 1);
   EXPECT_NE(o.log.find("needs the crank-angle output grid"), std::string::npos) << o.log;
+}
+
+// The block's side walls (engine.yaml: {surface: side_walls, ...}): the mean
+// ERP that `evas spectrum --erp` forms from the components c_k equals the mean
+// of the skin.erp channel over the same samples; its third-octave bands are
+// the figure's; a name that is no surface output is an error naming those
+// there are.
+TEST(Plot, ErpOfTheBlockSideWallsFromItsComponents) {
+  TempFolder tmp;
+  const std::string r = engine_results().string();
+  const Outcome s = run_evas({"spectrum", r, "--erp", "skin", "--from", "0.02", "--bands",
+                              "third-octave", "--csv", (tmp.path() / "bands.csv").string()},
+                             tmp.path() / "spectrum.log");
+  ASSERT_EQ(s.code, 0) << s.log;
+  const auto at = s.log.find("mean ERP ");
+  ASSERT_NE(at, std::string::npos) << s.log;
+  const double mean = std::stod(s.log.substr(at + 9));
+  const evas::ResultsData d = evas::read_results(r);
+  int erp = -1;
+  for (std::size_t i = 0; i < d.names.size(); ++i)
+    if (d.names[i] == "skin.erp") erp = static_cast<int>(i);
+  ASSERT_GE(erp, 0);
+  double sum = 0.0;
+  int n = 0;
+  for (std::size_t k = 0; k < d.time.size(); ++k)
+    if (d.time[k] >= 0.02) {
+      sum += d.values(static_cast<Eigen::Index>(k), erp);
+      ++n;
+    }
+  ASSERT_GT(sum, 0.0);
+  EXPECT_NEAR(mean, sum / n, 1e-5 * mean);  // printed with 6 digits
+  std::ifstream bands(tmp.path() / "bands.csv");
+  std::string header;
+  std::getline(bands, header);
+  EXPECT_EQ(header, "centre[Hz],lower[Hz],upper[Hz],erp[W],level[dB re 1 pW],bins");
+  ASSERT_EQ(plot({"erp", r, "--channel", "skin", "--from", "0.02"}, tmp.path() / "erp.png").code,
+            0);
+  EXPECT_FALSE(data_block(tmp.path() / "erp.dat", 1).empty());
+  const Outcome bad = run_evas({"spectrum", r, "--erp", "walls"}, tmp.path() / "bad.log");
+  EXPECT_EQ(bad.code, 1);
+  EXPECT_NE(bad.log.find("no surface output 'walls' (no channels walls.c0, ...; surface outputs "
+                         "in the file: skin)"),
+            std::string::npos)
+      << bad.log;
 }

@@ -461,6 +461,29 @@ class KeptBlock : public test_fe::PipelineSuite<KeptBlock> {
 };
 
 TEST_F(KeptBlock, CoarseChainWritesReducedBody) {
-  check_kept_body(*result_, {"bore1", "bore2", "bore3", "bore4", "bore5", "liner1", "liner2",
-                             "liner3", "liner4", "head", "mount1", "mount2", "mount3", "mount4"});
+  check_kept_body(*result_,
+                  {"bore1", "bore2", "bore3", "bore4", "bore5", "liner1", "liner2", "liner3",
+                   "liner4", "head", "mount1", "mount2", "mount3", "mount4", "side_walls"});
+  // every kept set is a physical surface of the mesh and keeps its areas and
+  // outward normals (io/calculix_surface.cpp): a mount pad's face is the flat
+  // 60 x 50 mm rectangle of block.geo, facing +y (mount1) or -y (mount2); the
+  // side walls are flat faces at |y| = const, and the block is symmetric in y,
+  // so the two sides' areas agree (flat faces: exact whatever the mesh)
+  const ModalBody& b = result_->body;
+  for (const auto& [name, ids] : b.node_sets) EXPECT_EQ(b.surfaces.count(name), 1u) << name;
+  for (const auto& [set, ny] :
+       std::vector<std::pair<std::string, double>>{{"mount1", 1.0}, {"mount2", -1.0}}) {
+    const SurfaceSet& pad = b.surfaces.at(set);
+    EXPECT_NEAR(pad.total_area(), 0.06 * 0.05, 1e-15) << set;
+    for (Eigen::Index i = 0; i < pad.normal.rows(); ++i)
+      EXPECT_NEAR(pad.normal(i, 1), ny, 1e-12) << set;
+  }
+  const SurfaceSet& walls = b.surfaces.at("side_walls");
+  double plus = 0.0, minus = 0.0;
+  for (Eigen::Index i = 0; i < walls.normal.rows(); ++i) {
+    EXPECT_NEAR(std::abs(walls.normal(i, 1)), 1.0, 1e-12);
+    (walls.normal(i, 1) > 0 ? plus : minus) += walls.area[i];
+  }
+  EXPECT_GT(plus, 0.1);
+  EXPECT_NEAR(plus, minus, 1e-12 * plus);
 }

@@ -4,6 +4,8 @@
 // (--point, --merge) and the input errors of a sweep.
 #include <algorithm>
 #include <cmath>
+#include <fstream>
+#include <sstream>
 
 #include "io/hdf5_util.h"
 #include "post/order_spectrum.h"
@@ -405,4 +407,57 @@ TEST(StudySweep, StabilitySearchesInParallelGiveTheSerialTable) {
   EXPECT_TRUE(contains(a, "bracketed") || contains(a, "stable up to HMAX")) << a;
   // one search per value: 1 reference + 2 + 3 bisections at most
   EXPECT_TRUE(contains(serial.log, "main*.viscosity = 0.02: h = ")) << serial.log;
+}
+
+// `evas plot waterfall|campbell|order-cuts SWEEP.h5` draws from the file what
+// the sweep drew from its data: the same gnuplot script but for the output
+// file's name (one code, plot/sweep_figures.h); and refuses what it cannot draw.
+TEST(StudySweep, PlotDrawsTheSweepFiguresAgainFromTheFile) {
+  TempFolder tmp;
+  std::vector<std::string> args = kSweep;
+  args.pop_back();  // draw the figures
+  const Outcome o =
+      run_evas(with(args, {"--out", (tmp.path() / "s").string()}), tmp.path() / "s.log");
+  ASSERT_EQ(o.code, 0) << o.log;
+  const fs::path sweep = tmp.path() / "s" / "sweep.h5";
+  auto text = [](const fs::path& p) {
+    std::ifstream f(p);
+    std::stringstream ss;
+    ss << f.rdbuf();
+    std::string t = ss.str();
+    const auto at = t.find("set output ");
+    if (at != std::string::npos) t.erase(at, t.find('\n', at) - at);
+    return t;
+  };
+  for (const auto& [kind, extra] : std::vector<std::pair<std::string, std::vector<std::string>>>{
+           {"waterfall", {"--channel", "main1.fx"}},
+           {"campbell", {}},
+           {"order-cuts", {"--channel", "main1.fx"}}}) {
+    SCOPED_TRACE(kind);
+    std::vector<std::string> p = {"plot", kind, sweep.string(), "--out",
+                                  (tmp.path() / (kind + ".png")).string()};
+    p.insert(p.end(), extra.begin(), extra.end());
+    const Outcome r = run_evas(p, tmp.path() / "p.log");
+    ASSERT_EQ(r.code, 0) << r.log;
+    const std::string study = kind == "order-cuts" ? "order_cuts" : kind;
+    const std::string drawn = text(tmp.path() / "s" / (study + ".gp"));
+    ASSERT_FALSE(drawn.empty());
+    EXPECT_EQ(text(tmp.path() / (kind + ".gp")), drawn);
+    EXPECT_TRUE(fs::exists(tmp.path() / (kind + ".png")));
+  }
+  const Outcome bad_order = run_evas({"plot", "order-cuts", sweep.string(), "--order", "0.3",
+                                      "--out", (tmp.path() / "x.png").string()},
+                                     tmp.path() / "b.log");
+  EXPECT_EQ(bad_order.code, 1);
+  EXPECT_NE(bad_order.log.find("--order 0.3: the sweep's spectra hold orders 0.5 .. 12"),
+            std::string::npos)
+      << bad_order.log;
+  const Outcome bad_channel = run_evas({"plot", "waterfall", sweep.string(), "--channel", "cyl1.fx",
+                                        "--out", (tmp.path() / "x.png").string()},
+                                       tmp.path() / "b.log");
+  EXPECT_EQ(bad_channel.code, 1);
+  EXPECT_NE(bad_channel.log.find("the sweep has no order spectra of 'cyl1.fx' (channels with "
+                                 "spectra: main1.fx, main1.fy, main2.fx"),
+            std::string::npos)
+      << bad_channel.log;
 }

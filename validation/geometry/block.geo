@@ -58,6 +58,8 @@
 //   bore1..bore5       main-bearing bore surfaces (radius journal_diameter / 2 about x)
 //   liner1..liner4     cylinder bore surfaces (radius bore / 2 about each cylinder axis)
 //   head               deck top face (z = deck_height), where the gas force acts
+//   side_walls         outer faces of the skirt (|y| = crankcase_half_width) and of
+//                      the water jacket (|y| = jacket_half_width), both sides
 //   mount1..mount4     outer faces of the mount pads: 1 front +y, 2 front -y,
 //                      3 rear +y, 4 rear -y
 //   pan_rail           bottom faces of the skirt walls (oil pan joint)
@@ -230,6 +232,13 @@ pr() = Surface In BoundingBox{x0 - eps, hc - tw - eps, -skirt_depth - eps,
 pr() += Surface In BoundingBox{x0 - eps, -hc - eps, -skirt_depth - eps,
                                x1 + eps, -hc + tw + eps, -skirt_depth + eps};
 Physical Surface("pan_rail") = {pr()};
+// outer side walls, both sides: the skirt's (|y| = hc) and the water jacket's
+// (|y| = hu) outside faces, the block's largest radiating faces (ERP outputs)
+sw() = Surface In BoundingBox{x0 - eps, hc - eps, -skirt_depth - eps, x1 + eps, hc + eps, deck_height + eps};
+sw() += Surface In BoundingBox{x0 - eps, -hc - eps, -skirt_depth - eps, x1 + eps, -hc + eps, deck_height + eps};
+sw() += Surface In BoundingBox{x0 - eps, hu - eps, -skirt_depth - eps, x1 + eps, hu + eps, deck_height + eps};
+sw() += Surface In BoundingBox{x0 - eps, -hu - eps, -skirt_depth - eps, x1 + eps, -hu + eps, deck_height + eps};
+Physical Surface("side_walls") = {sw()};
 If (flywheel_flange)
   xr = x1 + flange_thickness;
   fr() = Surface In BoundingBox{xr - eps, -flange_half_width - eps, flange_bottom - eps,

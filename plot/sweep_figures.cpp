@@ -1,0 +1,299 @@
+#include "plot/sweep_figures.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <sstream>
+
+#include "io/hdf5_util.h"
+#include "model/types.h"
+#include "plot/gnuplot.h"
+
+namespace evas {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+std::string g(double x, int digits) {
+  if (std::isnan(x)) return "";
+  char buf[48];
+  std::snprintf(buf, sizeof buf, "%.*g", digits, x);
+  return buf;
+}
+
+// The figures' x axis: the mean speed when the speed changes over the grid,
+// else the first key's number. Curves: the points of the first case grouped by
+// the values of the other keys.
+struct Axis {
+  std::string label;
+  std::vector<double> x;                           // per task
+  std::map<std::string, std::vector<int>> groups;  // group label -> tasks, grid order
+  std::vector<std::string> order;                  // group labels in order of first appearance
+};
+
+Axis figure_axis(const SweepFigureData& d) {
+  Axis a;
+  double lo = INFINITY, hi = -INFINITY;
+  for (const auto& t : d.tasks)
+    if (std::isfinite(t.rpm)) {
+      lo = std::min(lo, t.rpm);
+      hi = std::max(hi, t.rpm);
+    }
+  const bool by_speed = std::isfinite(lo) && hi - lo > 1e-6 * std::max(1.0, std::abs(hi));
+  a.label = by_speed ? "mean crank speed [rpm]" : d.keys.front();
+  for (std::size_t k = 0; k < d.tasks.size(); ++k) {
+    const SweepFigureData::Task& t = d.tasks[k];
+    double x = by_speed ? t.rpm : kNaN;
+    if (!by_speed) {
+      char* end = nullptr;
+      x = std::strtod(t.values.front().c_str(), &end);
+      if (t.values.front().empty() || *end) x = t.point;
+    }
+    a.x.push_back(x);
+    if (t.case_index != 0) continue;
+    std::string grp;  // the first key is the axis (or the speed it sets)
+    for (std::size_t j = 1; j < d.keys.size(); ++j)
+      grp += (grp.empty() ? "" : ", ") + d.keys[j] + "=" + t.values[j];
+    if (!a.groups.count(grp)) a.order.push_back(grp);
+    a.groups[grp].push_back(static_cast<int>(k));
+  }
+  return a;
+}
+
+std::size_t order_index(const SweepFigureData& d, double o) {
+  for (std::size_t j = 0; j < d.orders.size(); ++j)
+    if (std::abs(d.orders[j] - o) < 1e-9) return j;
+  return d.orders.size();
+}
+
+}  // namespace
+
+bool has_spectra(const SweepFigureData& d) {
+  for (const auto& a : d.amplitude)
+    if (!a.empty()) return true;
+  return false;
+}
+
+int sweep_channel(const SweepFigureData& d, const std::string& name, const std::string& file) {
+  for (std::size_t i = 0; i < d.names.size(); ++i)
+    if (d.names[i] == name) return static_cast<int>(i);
+  std::string have;
+  for (const auto& n : d.names) have += (have.empty() ? "" : ", ") + n;
+  throw InputError(file + ": the sweep has no order spectra of '" + name +
+                   "' (channels with spectra: " + (have.empty() ? "none" : have) + ")");
+}
+
+SweepFigureData read_sweep_figures(const std::string& path, const std::string& why) {
+  SweepFigureData d;
+  h5::Quiet quiet;
+  try {
+    h5::Handle f = h5::open_file(path);
+    const std::string kind =
+        h5::has_attribute(f, "study") ? h5::read_string_attribute(f, "study") : "";
+    if (kind != "sweep")
+      throw InputError((why.empty() ? "" : why + ": ") + path + " is not a sweep file (" +
+                       (kind.empty() ? std::string("no 'study' attribute: a run's results?")
+                                     : "a '" + kind + "' study's file") +
+                       "); `evas study sweep` writes sweep.h5 into its folder");
+    d.scene_name = h5::read_string_attribute(f, "scene_name");
+    d.cycles = static_cast<int>(h5::read_int_attribute(f, "cycles_per_spectrum"));
+    std::vector<hsize_t> dims;
+    d.keys = h5::read_strings(f, "/grid/keys");
+    std::vector<std::vector<std::string>> values;  // per key, per point
+    for (std::size_t j = 0; j < d.keys.size(); ++j)
+      values.push_back(h5::read_strings(f, "/grid/value" + std::to_string(j)));
+    const std::vector<long long> point = h5::read_int64s(f, "/tasks/point", dims);
+    const std::vector<long long> cs = h5::read_int64s(f, "/tasks/case", dims);
+    const std::vector<double> rpm = h5::read_doubles(f, "/tasks/mean_rpm", dims);
+    if (cs.size() != point.size() || rpm.size() != point.size())
+      throw h5::Failure("the /tasks datasets differ in length");
+    for (std::size_t k = 0; k < point.size(); ++k) {
+      SweepFigureData::Task t;
+      t.point = static_cast<int>(point[k]);
+      t.case_index = static_cast<int>(cs[k]);
+      t.rpm = rpm[k];
+      for (const auto& v : values) {
+        if (t.point < 0 || static_cast<std::size_t>(t.point) >= v.size())
+          throw h5::Failure("task " + std::to_string(k) + " names point " +
+                            std::to_string(t.point) + ", which the grid does not have");
+        t.values.push_back(v[static_cast<std::size_t>(t.point)]);
+      }
+      d.tasks.push_back(std::move(t));
+    }
+    d.names = h5::read_strings(f, "/channels/names");
+    d.units = h5::read_strings(f, "/channels/units");
+    d.orders = h5::read_doubles(f, "/orders/order", dims);
+    const std::vector<double> amp = h5::read_doubles(f, "/orders/amplitude", dims);
+    const std::size_t nt = d.tasks.size(), nc = d.names.size(), no = d.orders.size();
+    if (amp.size() != nt * nc * no)
+      throw h5::Failure("/orders/amplitude does not hold tasks x channels x orders values");
+    for (std::size_t k = 0; k < nt; ++k) {
+      std::vector<std::vector<double>> a(nc, std::vector<double>(no));
+      bool any = false;
+      for (std::size_t c = 0; c < nc; ++c)
+        for (std::size_t o = 0; o < no; ++o) {
+          a[c][o] = amp[(k * nc + c) * no + o];
+          any = any || std::isfinite(a[c][o]);
+        }
+      d.amplitude.push_back(any ? std::move(a) : std::vector<std::vector<double>>{});
+    }
+    if (!d.orders.empty()) d.max_order = d.orders.back();
+    const std::vector<double> hz = h5::read_doubles(f, "/campbell/frequency", dims);
+    const auto body = h5::read_strings(f, "/campbell/body");
+    const auto kinds = h5::read_strings(f, "/campbell/kind");
+    const auto dir = h5::read_strings(f, "/campbell/direction");
+    if (body.size() != hz.size() || kinds.size() != hz.size() || dir.size() != hz.size())
+      throw h5::Failure("the /campbell datasets differ in length");
+    for (std::size_t i = 0; i < hz.size(); ++i) {
+      NaturalFrequency n;
+      n.hz = hz[i];
+      n.body = body[i];
+      n.kind = kinds[i];
+      n.direction = dir[i];
+      d.natural.push_back(n);
+    }
+  } catch (const h5::Failure& e) {
+    throw InputError(path + ": " + e.what());
+  }
+  return d;
+}
+
+std::string order_cuts_script(const SweepFigureData& d, const std::vector<int>& channels,
+                              const std::vector<double>& orders, const fs::path& out) {
+  std::vector<int> chans = channels;
+  if (chans.size() > 4) chans.resize(4);
+  const Axis a = figure_axis(d);
+  std::ostringstream gp;
+  gp << "# order cuts of " << d.scene_name << " (evas study sweep)\n"
+     << gp_terminal(out, 1100, 380 * static_cast<int>((chans.size() + 1) / 2) + 60);
+  int block = 0;
+  std::vector<std::string> plots;  // per panel
+  for (int c : chans) {
+    std::ostringstream pl;
+    for (std::size_t grp = 0; grp < a.order.size(); ++grp)
+      for (double o : orders) {
+        const std::size_t j = order_index(d, o);
+        gp << "$C" << block << " << EOD\n";
+        for (int k : a.groups.at(a.order[grp])) {
+          const auto& amp = d.amplitude[static_cast<std::size_t>(k)];
+          if (amp.empty() || j >= d.orders.size() || !std::isfinite(amp[c][j])) continue;
+          gp << g(a.x[static_cast<std::size_t>(k)], 10) << " " << g(amp[c][j], 10) << "\n";
+        }
+        gp << "EOD\n";
+        pl << (pl.tellp() > 0 ? ", " : "plot ") << "$C" << block
+           << " using 1:2 with linespoints pt 7 title "
+           << gp_quote("order " + g(o, 4) +
+                       (a.order[grp].empty() ? "" : " (" + a.order[grp] + ")"));
+        ++block;
+      }
+    plots.push_back(pl.str());
+  }
+  const int cols = chans.size() > 1 ? 2 : 1;
+  gp << "set multiplot layout " << (chans.size() + 1) / 2 << "," << cols << " title "
+     << gp_quote("order cuts: " + d.scene_name + " (amplitude of each order over the last " +
+                 std::to_string(d.cycles) + " cycle(s))")
+     << "\nset grid\nset key top left\nset xlabel " << gp_quote(a.label) << "\n";
+  for (std::size_t i = 0; i < chans.size(); ++i) {
+    const auto c = static_cast<std::size_t>(chans[i]);
+    gp << "set title " << gp_quote(d.names[c]) << "\nset ylabel "
+       << gp_quote("amplitude [" + d.units[c] + "]") << "\n"
+       << plots[i] << "\n";
+  }
+  gp << "unset multiplot\n";
+  return gp.str();
+}
+
+std::string waterfall_script(const SweepFigureData& d, int channel, const fs::path& out) {
+  const auto c = static_cast<std::size_t>(channel);
+  const Axis a = figure_axis(d);
+  const auto& tasks = a.groups.at(a.order.front());
+  std::ostringstream gp;
+  gp << "# waterfall of " << d.scene_name << " (evas study sweep)\n"
+     << gp_terminal(out, 1000, 700) << "$W << EOD\n";
+  for (int k : tasks) {
+    const auto& amp = d.amplitude[static_cast<std::size_t>(k)];
+    if (amp.empty()) continue;
+    for (std::size_t j = 0; j < d.orders.size(); ++j)
+      if (std::isfinite(amp[c][j]))
+        gp << g(d.orders[j], 6) << " " << g(a.x[static_cast<std::size_t>(k)], 10) << " "
+           << g(amp[c][j], 10) << "\n";
+    gp << "\n\n";  // one spectrum per block
+  }
+  gp << "EOD\n"
+     << "set title "
+     << gp_quote("waterfall: " + d.names[c] + ", " + d.scene_name +
+                 (a.order.front().empty() ? "" : " (" + a.order.front() + ")"))
+     << "\nset xlabel 'engine order'\nset ylabel " << gp_quote(a.label)
+     << " rotate parallel\nset zlabel " << gp_quote("amplitude [" + d.units[c] + "]")
+     << " rotate parallel\nset view 55, 35\nset grid\nset xyplane at 0\nset palette "
+        "rgbformulae 33,13,10\nset cblabel "
+     << gp_quote("amplitude [" + d.units[c] + "]")
+     << "\nsplot $W using 1:2:3 with impulses lw 3 lc palette notitle, "
+        "$W using 1:2:3 with lines lc rgb 'gray40' notitle\n";
+  return gp.str();
+}
+
+std::string campbell_script(const SweepFigureData& d, const fs::path& out) {
+  double top = 0.0;
+  std::vector<double> speeds;
+  for (const auto& t : d.tasks)
+    if (std::isfinite(t.rpm) && t.case_index == 0) {
+      top = std::max(top, t.rpm);
+      speeds.push_back(t.rpm);
+    }
+  if (!(top > 0.0)) return "";
+  const double xmax = 1.1 * top, ymax = d.max_order * xmax / 60.0;
+  std::ostringstream gp;
+  gp << "# Campbell diagram of " << d.scene_name << " (evas study sweep)\n"
+     << gp_terminal(out, 1000, 700) << "set title "
+     << gp_quote("Campbell diagram: " + d.scene_name +
+                 " (natural frequencies against engine orders)")
+     << "\nset xlabel 'crank speed [rpm]'\nset ylabel 'frequency [Hz]'\nset xrange [0:"
+     << g(xmax, 8) << "]\nset yrange [0:" << g(ymax, 8)
+     << "]\nset grid\n"
+     // every curve is a straight line: two samples draw it exactly (gnuplot's
+     // default of 100 per curve is most of the figure's drawing time)
+     << "set samples 2\nset key outside right top\n";
+  for (double o = 0.5; o <= d.max_order + 1e-9; o += 0.5) {
+    const double y_end = o * xmax / 60.0;
+    const double xl = y_end > ymax ? ymax * 60.0 / o : xmax;
+    if (std::abs(o - std::round(o)) < 1e-9)
+      gp << "set label " << gp_quote(g(o, 3)) << " at " << g(xl, 8) << "," << g(o * xl / 60.0, 8)
+         << " offset -1.2,0.6 tc rgb 'gray30'\n";
+  }
+  for (double s : speeds)
+    gp << "set arrow from " << g(s, 8) << ",0 to " << g(s, 8) << "," << g(ymax, 8)
+       << " nohead lc rgb 'gray75' dt 3\n";
+  gp << "plot ";
+  bool first = true;
+  auto sep = [&] {
+    if (!first) gp << ", \\\n     ";
+    first = false;
+  };
+  for (double o = 0.5; o <= d.max_order + 1e-9; o += 0.5) {
+    const bool whole = std::abs(o - std::round(o)) < 1e-9;
+    sep();
+    gp << g(o, 3) << "*x/60 with lines lc rgb " << (whole ? "'gray30'" : "'gray70'")
+       << (whole ? " dt 1" : " dt 2") << " " << (o == 0.5 ? "title 'engine orders'" : "notitle");
+  }
+  std::map<std::string, int> shown;  // one legend entry per body and kind
+  int colour = 1;
+  std::map<std::string, int> colours;
+  for (const auto& n : d.natural) {
+    if (!(n.hz > 0.0) || n.hz > ymax) continue;
+    const std::string who =
+        n.kind == "mount" ? "mount modes (rigid engine)" : n.body + " " + n.kind + " modes";
+    if (!colours.count(who)) colours[who] = colour++;
+    sep();
+    gp << g(n.hz, 8) << " with lines lw 2 lc " << colours[who] << " "
+       << (shown[who]++ ? std::string("notitle") : "title " + gp_quote(who));
+  }
+  gp << "\n";
+  return gp.str();
+}
+
+}  // namespace evas
