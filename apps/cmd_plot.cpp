@@ -12,7 +12,7 @@ int cmd_plot(const std::vector<std::string>& args) {
   PlotOptions o;
   std::string kinds;
   for (const auto& [k, what] : plot_kinds())
-    kinds += "  " + k + std::string(10 - k.size(), ' ') + what + "\n";
+    kinds += "  " + k + std::string(k.size() < 15 ? 15 - k.size() : 1, ' ') + what + "\n";
   po::options_description opts(
       "usage: evas plot KIND RESULTS.h5 [--channel NAME]... [--element NAME] --out "
       "FIGURE.png|svg\n"

@@ -12,6 +12,7 @@
 #include "io/results.h"
 #include "model/types.h"
 #include "plot/gnuplot.h"
+#include "plot/study_figures.h"
 #include "plot/sweep_figures.h"
 #include "post/erp_spectrum.h"
 #include "post/order_spectrum.h"
@@ -527,7 +528,10 @@ const std::vector<std::pair<std::string, std::string>>& plot_kinds() {
       {"campbell", "natural frequencies against speed with the engine orders (sweep.h5)"},
       {"order-cuts",
        "amplitude of orders (--order) of channels (--channel) against the swept "
-       "value (sweep.h5)"}};
+       "value (sweep.h5)"},
+      {"work-precision",
+       "error against wall time and residual evaluations of a work-precision "
+       "study (study.h5)"}};
   return k;
 }
 
@@ -552,6 +556,19 @@ std::vector<std::string> plot_results(const std::string& results, const PlotOpti
     throw InputError("plot: gnuplot is not installed (apt-get install gnuplot-nox)");
   if (o.kind == "waterfall" || o.kind == "campbell" || o.kind == "order-cuts")
     return plot_sweep_file(results, o, out);
+  if (o.kind == "work-precision") {
+    if (!o.channels.empty())
+      throw InputError(
+          "plot work-precision: --channel does not apply (the study's error "
+          "covers the channels it was run with)");
+    Figure f;
+    f.gp << work_precision_script(read_work_precision(results), out);
+    if (f.gp.str().empty())
+      throw InputError(results + ": no case of the study completed with an error > 0");
+    std::error_code ec;
+    if (out.has_parent_path()) fs::create_directories(out.parent_path(), ec);
+    return draw(out, f);
+  }
   const Record rec(results);
   Figure f;
   if (o.kind == "channels") plot_channels(rec, o, out, f);

@@ -1,6 +1,8 @@
 // Figures by gnuplot (gnuplot.h).
 #include "plot/gnuplot.h"
 
+#include <cmath>
+#include <cstdio>
 #include <cstdlib>
 
 namespace evas {
@@ -39,6 +41,13 @@ std::string gp_quote(const std::string& s) {
     out += c;
   }
   return out + "'";
+}
+
+std::string gp_num(double x, int digits) {
+  if (std::isnan(x)) return "";
+  char buf[48];
+  std::snprintf(buf, sizeof buf, "%.*g", digits, x);
+  return buf;
 }
 
 std::string gp_terminal(const std::filesystem::path& out, int w, int h) {

@@ -21,6 +21,8 @@ bool run_gnuplot(const std::vector<std::filesystem::path>& scripts);
 std::string gp_quote(const std::string& s);
 /// A POSIX shell word: '...' with ' written as '\''.
 std::string shell_quote(const std::string& s);
+/// "%.*g" of x, "" for NaN (numbers in scripts and data blocks).
+std::string gp_num(double x, int digits);
 /// The terminal lines of a figure `out` (w x h pixels): pngcairo for .png,
 /// svg otherwise; the output is named without its folder (run_gnuplot runs
 /// in the script's folder).

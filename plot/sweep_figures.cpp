@@ -18,13 +18,6 @@ namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-std::string g(double x, int digits) {
-  if (std::isnan(x)) return "";
-  char buf[48];
-  std::snprintf(buf, sizeof buf, "%.*g", digits, x);
-  return buf;
-}
-
 // The figures' x axis: the mean speed when the speed changes over the grid,
 // else the first key's number. Curves: the points of the first case grouped by
 // the values of the other keys.
@@ -181,12 +174,13 @@ std::string order_cuts_script(const SweepFigureData& d, const std::vector<int>& 
         for (int k : a.groups.at(a.order[grp])) {
           const auto& amp = d.amplitude[static_cast<std::size_t>(k)];
           if (amp.empty() || j >= d.orders.size() || !std::isfinite(amp[c][j])) continue;
-          gp << g(a.x[static_cast<std::size_t>(k)], 10) << " " << g(amp[c][j], 10) << "\n";
+          gp << gp_num(a.x[static_cast<std::size_t>(k)], 10) << " " << gp_num(amp[c][j], 10)
+             << "\n";
         }
         gp << "EOD\n";
         pl << (pl.tellp() > 0 ? ", " : "plot ") << "$C" << block
            << " using 1:2 with linespoints pt 7 title "
-           << gp_quote("order " + g(o, 4) +
+           << gp_quote("order " + gp_num(o, 4) +
                        (a.order[grp].empty() ? "" : " (" + a.order[grp] + ")"));
         ++block;
       }
@@ -219,8 +213,8 @@ std::string waterfall_script(const SweepFigureData& d, int channel, const fs::pa
     if (amp.empty()) continue;
     for (std::size_t j = 0; j < d.orders.size(); ++j)
       if (std::isfinite(amp[c][j]))
-        gp << g(d.orders[j], 6) << " " << g(a.x[static_cast<std::size_t>(k)], 10) << " "
-           << g(amp[c][j], 10) << "\n";
+        gp << gp_num(d.orders[j], 6) << " " << gp_num(a.x[static_cast<std::size_t>(k)], 10) << " "
+           << gp_num(amp[c][j], 10) << "\n";
     gp << "\n\n";  // one spectrum per block
   }
   gp << "EOD\n"
@@ -253,7 +247,7 @@ std::string campbell_script(const SweepFigureData& d, const fs::path& out) {
      << gp_quote("Campbell diagram: " + d.scene_name +
                  " (natural frequencies against engine orders)")
      << "\nset xlabel 'crank speed [rpm]'\nset ylabel 'frequency [Hz]'\nset xrange [0:"
-     << g(xmax, 8) << "]\nset yrange [0:" << g(ymax, 8)
+     << gp_num(xmax, 8) << "]\nset yrange [0:" << gp_num(ymax, 8)
      << "]\nset grid\n"
      // every curve is a straight line: two samples draw it exactly (gnuplot's
      // default of 100 per curve is most of the figure's drawing time)
@@ -262,11 +256,11 @@ std::string campbell_script(const SweepFigureData& d, const fs::path& out) {
     const double y_end = o * xmax / 60.0;
     const double xl = y_end > ymax ? ymax * 60.0 / o : xmax;
     if (std::abs(o - std::round(o)) < 1e-9)
-      gp << "set label " << gp_quote(g(o, 3)) << " at " << g(xl, 8) << "," << g(o * xl / 60.0, 8)
-         << " offset -1.2,0.6 tc rgb 'gray30'\n";
+      gp << "set label " << gp_quote(gp_num(o, 3)) << " at " << gp_num(xl, 8) << ","
+         << gp_num(o * xl / 60.0, 8) << " offset -1.2,0.6 tc rgb 'gray30'\n";
   }
   for (double s : speeds)
-    gp << "set arrow from " << g(s, 8) << ",0 to " << g(s, 8) << "," << g(ymax, 8)
+    gp << "set arrow from " << gp_num(s, 8) << ",0 to " << gp_num(s, 8) << "," << gp_num(ymax, 8)
        << " nohead lc rgb 'gray75' dt 3\n";
   gp << "plot ";
   bool first = true;
@@ -277,7 +271,7 @@ std::string campbell_script(const SweepFigureData& d, const fs::path& out) {
   for (double o = 0.5; o <= d.max_order + 1e-9; o += 0.5) {
     const bool whole = std::abs(o - std::round(o)) < 1e-9;
     sep();
-    gp << g(o, 3) << "*x/60 with lines lc rgb " << (whole ? "'gray30'" : "'gray70'")
+    gp << gp_num(o, 3) << "*x/60 with lines lc rgb " << (whole ? "'gray30'" : "'gray70'")
        << (whole ? " dt 1" : " dt 2") << " " << (o == 0.5 ? "title 'engine orders'" : "notitle");
   }
   std::map<std::string, int> shown;  // one legend entry per body and kind
@@ -289,7 +283,7 @@ std::string campbell_script(const SweepFigureData& d, const fs::path& out) {
         n.kind == "mount" ? "mount modes (rigid engine)" : n.body + " " + n.kind + " modes";
     if (!colours.count(who)) colours[who] = colour++;
     sep();
-    gp << g(n.hz, 8) << " with lines lw 2 lc " << colours[who] << " "
+    gp << gp_num(n.hz, 8) << " with lines lw 2 lc " << colours[who] << " "
        << (shown[who]++ ? std::string("notitle") : "title " + gp_quote(who));
   }
   gp << "\n";

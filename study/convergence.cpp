@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "integrators/settings.h"
+#include "plot/study_figures.h"
 #include "study/report.h"
 #include "study/study.h"
 #include "study/study_common.h"
@@ -52,36 +53,14 @@ void write_convergence(const Options& opt, ConvergenceResult& res, bool final) {
   info.files.push_back((dir / "convergence.md").string());
 
   if (!final) return;
-  std::ostringstream data;
-  double sx = 0, sy = 0;
-  int n = 0;
-  for (std::size_t i = 0; i < res.cases.size(); ++i) {
-    const double e = res.cases[i].error;
-    if (res.cases[i].status != CaseStatus::completed || !(e > 0) || !std::isfinite(e)) continue;
-    data << gnum(res.x[i], 12) << " " << gnum(e, 12) << "\n";
-    sx += std::log(res.x[i]);
-    sy += std::log(e);
-    ++n;
-  }
-  if (n == 0) return;
+  // drawn by the code of plot/study_figures.h
+  std::vector<double> errors;
+  for (const auto& r : res.cases)
+    errors.push_back(r.status == CaseStatus::completed ? r.error : kNaN);
   const fs::path png = dir / "convergence.png";
-  std::ostringstream gp;
-  gp << "# convergence figure of " << info.scene_name << " (evas study)\n"
-     << gp_terminal(png, 900, 600) << "$D << EOD\n"
-     << data.str() << "EOD\n"
-     << "set logscale xy\nset format y '1e%L'\nset grid\nset key top left\n"
-     << "set xlabel " << gp_quote(res.key) << "\n"
-     << "set ylabel 'error (relative to each channel amplitude)'\n"
-     << "set title " << gp_quote("convergence: " + res.family + " on " + info.scene_name) << "\n";
-  if (!std::isnan(res.slope)) {
-    const double b = sy / n - res.slope * sx / n;  // the fit passes through the centroid
-    gp << "f(x) = exp(" << gnum(b, 12) << ") * x**(" << gnum(res.slope, 12) << ")\n"
-       << "plot $D using 1:2 with linespoints pt 7 title 'error', f(x) with lines dt 2 title "
-       << gp_quote("slope " + gnum(res.slope, 3)) << "\n";
-  } else {
-    gp << "plot $D using 1:2 with linespoints pt 7 title 'error'\n";
-  }
-  plot(opt, dir / "convergence.gp", gp.str(), info, png);
+  const std::string gp =
+      convergence_script(info.scene_name, res.family, res.key, res.x, errors, res.slope, png);
+  if (!gp.empty()) plot(opt, dir / "convergence.gp", gp, info, png);
 }
 
 }  // namespace

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "integrators/settings.h"
+#include "plot/study_figures.h"
 #include "study/report.h"
 #include "study/study.h"
 #include "study/study_common.h"
@@ -32,72 +33,17 @@ std::string family_of(const Case& c) {
   return strip_keys(settings_label(c.settings), knobs);
 }
 
+// The figure study.png, drawn by the code `evas plot work-precision` uses
+// (plot/study_figures.h).
 void plot_work_precision(const Options& opt, const WorkPrecisionResult& res, StudyInfo& info) {
-  std::map<std::string, std::vector<const CaseResult*>> fam;
-  std::vector<std::string> order;
-  for (const auto& r : res.cases) {
-    if (r.status != CaseStatus::completed || !(r.error > 0.0) || !std::isfinite(r.error)) continue;
-    const std::string f = family_of(r.c);
-    if (!fam.count(f)) order.push_back(f);
-    fam[f].push_back(&r);
-  }
-  if (order.empty()) return;
-  // settings every curve shares (e.g. the scene's linear solver) go to the
-  // title, so that the legend stays short enough not to cover the curves
-  std::vector<std::string> common;  // "key=value" in every family
-  std::set<std::string> common_keys;
-  if (order.size() > 1) {
-    std::istringstream first(order.front());
-    std::string word;
-    first >> word;  // the integrator's name
-    while (first >> word) {
-      bool all = true;
-      for (const auto& f : order)
-        all = all && (" " + f + " ").find(" " + word + " ") != std::string::npos;
-      if (all) {
-        common.push_back(word);
-        common_keys.insert(word.substr(0, word.find('=')));
-      }
-    }
-  }
-  std::vector<std::string> legend;
-  for (const auto& f : order) legend.push_back(strip_keys(f, common_keys));
-  // one legend for both panels, in two columns below them
-  const int key_rows = static_cast<int>((order.size() + 1) / 2);
+  WorkPrecisionData d{info.scene_name, info.window, info.norm, {}};
+  for (const auto& r : res.cases)
+    if (r.status == CaseStatus::completed)
+      d.points.push_back(
+          {family_of(r.c), r.wall, r.error, static_cast<double>(r.stats.residual_evals)});
   const fs::path png = fs::path(info.out_dir) / "study.png";
-  std::ostringstream gp;
-  gp << "# work-precision figure of " << info.scene_name << " (evas study)\n"
-     << gp_terminal(png, 1400, 560 + 18 * key_rows);
-  for (std::size_t i = 0; i < order.size(); ++i) {
-    auto pts = fam[order[i]];
-    std::sort(pts.begin(), pts.end(),
-              [](const CaseResult* a, const CaseResult* b) { return a->error > b->error; });
-    gp << "$F" << i << " << EOD\n";
-    for (const auto* p : pts)
-      gp << gnum(p->wall, 9) << " " << gnum(p->error, 9) << " " << p->stats.residual_evals << "\n";
-    gp << "EOD\n";
-  }
-  gp << "set multiplot layout 1,2 title "
-     << gp_quote("work-precision: " + info.scene_name + " (" + info.window + ", norm " + info.norm +
-                 ")" + (common.empty() ? "" : "; all curves: " + join(common, " ")))
-     << "\n"
-     << "set logscale xy\nset format y '1e%L'\nset grid\nset bmargin " << key_rows + 5 << "\n"
-     << "set key at screen 0.02,screen 0.01 left bottom vertical maxrows " << key_rows
-     << " Left reverse samplen 2 width -4\n"
-     << "set ylabel 'error (relative to each channel amplitude)'\n";
-  auto curves = [&](const char* using_) {
-    gp << "plot ";
-    for (std::size_t i = 0; i < order.size(); ++i)
-      gp << (i ? ", " : "") << "$F" << i << " using " << using_ << " with linespoints pt "
-         << (i < 8 ? 7 : 5) << " title " << gp_quote(legend[i]);  // past 8 the colours repeat
-    gp << "\n";
-  };
-  gp << "set xlabel 'wall time [s]'\n";
-  curves("1:2");
-  gp << "set xlabel 'residual evaluations'\nunset key\n";
-  curves("3:2");
-  gp << "unset multiplot\n";
-  plot(opt, fs::path(info.out_dir) / "study.gp", gp.str(), info, png);
+  const std::string gp = work_precision_script(d, png);
+  if (!gp.empty()) plot(opt, fs::path(info.out_dir) / "study.gp", gp, info, png);
 }
 
 void write_work_precision(const Options& opt, WorkPrecisionResult& res,
@@ -133,6 +79,10 @@ void write_work_precision(const Options& opt, WorkPrecisionResult& res,
     write_info_attributes(f, "work-precision", info, opt);
     h5::Handle g = h5::create_group(f, "cases");
     write_columns_h5(g, cols);
+    // each case's family (a curve of the figure: evas plot work-precision)
+    std::vector<std::string> families;
+    for (const auto& r : res.cases) families.push_back(family_of(r.c));
+    h5::write_strings(g, "family", families);
     write_reference_h5(f, res.reference, rows);
   });
   info.files.push_back((dir / "study.h5").string());

@@ -24,6 +24,7 @@
 #include "io/results.h"
 #include "io/scene.h"
 #include "model/modal_body.h"
+#include "plot/figures.h"
 #include "solver/system.h"
 #include "study/study.h"
 
@@ -470,6 +471,28 @@ TEST(StudyWorkPrecision, LegendLeavesOutSettingsEveryCurveShares) {
       EXPECT_EQ(line.find("max_steps"), std::string::npos) << line;  // in no legend entry
     }
   EXPECT_EQ(plots, 2);
+  // `evas plot work-precision study.h5` draws the same figure again from the
+  // file (one code, plot/study_figures.h): the script differs only in its output
+  PlotOptions po;
+  po.kind = "work-precision";
+  const fs::path again = dir.path() / "again.png";
+  plot_results((dir.path() / "out" / "study.h5").string(), po, again);
+  std::ifstream in2(dir.path() / "again.gp");
+  std::string gp2((std::istreambuf_iterator<char>(in2)), {});
+  const std::string from = "set output 'study.png'", to = "set output 'again.png'";
+  std::string expected = gp;
+  ASSERT_NE(expected.find(from), std::string::npos);
+  expected.replace(expected.find(from), from.size(), to);
+  EXPECT_EQ(gp2, expected);
+  EXPECT_TRUE(fs::exists(again));
+  // a file that is no HDF5 file is named
+  try {
+    plot_results(scene, po, dir.path() / "x.png");
+    ADD_FAILURE() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("osc.yaml: not an HDF5 file"), std::string::npos)
+        << e.what();
+  }
 }
 
 TEST(StudyWorkPrecision, BadInputIsReportedBeforeAnyRun) {

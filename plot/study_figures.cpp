@@ -1,0 +1,173 @@
+#include "plot/study_figures.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <set>
+#include <sstream>
+
+#include "io/hdf5_util.h"
+#include "model/types.h"
+#include "plot/gnuplot.h"
+
+namespace evas {
+
+namespace {
+
+// `label` without the words whose key (before '=') is in `keys`.
+std::string without_keys(const std::string& label, const std::set<std::string>& keys) {
+  std::istringstream in(label);
+  std::string word, out;
+  while (in >> word)
+    if (!keys.count(word.substr(0, word.find('=')))) out += (out.empty() ? "" : " ") + word;
+  return out;
+}
+
+bool usable(double e) { return e > 0.0 && std::isfinite(e); }
+
+}  // namespace
+
+WorkPrecisionData read_work_precision(const std::string& path) {
+  WorkPrecisionData d;
+  h5::Quiet quiet;
+  try {
+    h5::Handle f = h5::open_file(path);
+    const std::string kind =
+        h5::has_attribute(f, "study") ? h5::read_string_attribute(f, "study") : "";
+    if (kind != "work-precision")
+      throw InputError("plot work-precision: " + path + " is not a work-precision study's file (" +
+                       (kind.empty() ? std::string("no 'study' attribute: a run's results?")
+                                     : "a '" + kind + "' study's") +
+                       "); `evas study work-precision` writes study.h5");
+    d.scene_name = h5::read_string_attribute(f, "scene_name");
+    d.window = h5::read_string_attribute(f, "window");
+    d.norm = h5::read_string_attribute(f, "norm");
+    if (!h5::exists(f, "/cases/family"))
+      throw InputError(path +
+                       ": the study's file has no /cases/family (written by an evas "
+                       "before 2026-11-29): run the study again");
+    std::vector<hsize_t> dims;
+    const auto family = h5::read_strings(f, "/cases/family");
+    const auto status = h5::read_strings(f, "/cases/status");
+    const auto error = h5::read_doubles(f, "/cases/error", dims);
+    const auto wall = h5::read_doubles(f, "/cases/wall", dims);
+    const auto res = h5::read_doubles(f, "/cases/stats/residual_evals", dims);
+    const std::size_t n = family.size();
+    if (status.size() != n || error.size() != n || wall.size() != n || res.size() != n)
+      throw h5::Failure("the /cases datasets differ in length");
+    for (std::size_t i = 0; i < n; ++i)
+      if (status[i] == "completed" && usable(error[i]))
+        d.points.push_back({family[i], wall[i], error[i], res[i]});
+  } catch (const h5::Failure& e) {
+    throw InputError(path + ": " + e.what());
+  }
+  return d;
+}
+
+std::string work_precision_script(const WorkPrecisionData& d, const std::filesystem::path& out) {
+  std::map<std::string, std::vector<const WorkPrecisionPoint*>> fam;
+  std::vector<std::string> order;
+  for (const auto& p : d.points) {
+    if (!usable(p.error)) continue;
+    if (!fam.count(p.family)) order.push_back(p.family);
+    fam[p.family].push_back(&p);
+  }
+  if (order.empty()) return "";
+  // settings every curve shares (e.g. the scene's linear solver) go to the
+  // title, so that the legend stays short enough not to cover the curves
+  std::vector<std::string> common;  // "key=value" in every family
+  std::set<std::string> common_keys;
+  if (order.size() > 1) {
+    std::istringstream first(order.front());
+    std::string word;
+    first >> word;  // the integrator's name
+    while (first >> word) {
+      bool all = true;
+      for (const auto& f : order)
+        all = all && (" " + f + " ").find(" " + word + " ") != std::string::npos;
+      if (all) {
+        common.push_back(word);
+        common_keys.insert(word.substr(0, word.find('=')));
+      }
+    }
+  }
+  std::vector<std::string> legend;
+  for (const auto& f : order) legend.push_back(without_keys(f, common_keys));
+  std::string shared;
+  for (const auto& w : common) shared += (shared.empty() ? "" : " ") + w;
+  // one legend for both panels, in two columns below them
+  const int key_rows = static_cast<int>((order.size() + 1) / 2);
+  std::ostringstream gp;
+  gp << "# work-precision figure of " << d.scene_name << " (evas study)\n"
+     << gp_terminal(out, 1400, 560 + 18 * key_rows);
+  for (std::size_t i = 0; i < order.size(); ++i) {
+    auto pts = fam[order[i]];
+    std::stable_sort(pts.begin(), pts.end(),
+                     [](const WorkPrecisionPoint* a, const WorkPrecisionPoint* b) {
+                       return a->error > b->error;
+                     });
+    gp << "$F" << i << " << EOD\n";
+    for (const auto* p : pts)
+      gp << gp_num(p->wall, 9) << " " << gp_num(p->error, 9) << " " << gp_num(p->residuals, 12)
+         << "\n";
+    gp << "EOD\n";
+  }
+  gp << "set multiplot layout 1,2 title "
+     << gp_quote("work-precision: " + d.scene_name + " (" + d.window + ", norm " + d.norm + ")" +
+                 (common.empty() ? "" : "; all curves: " + shared))
+     << "\n"
+     << "set logscale xy\nset format y '1e%L'\nset grid\nset bmargin " << key_rows + 5 << "\n"
+     << "set key at screen 0.02,screen 0.01 left bottom vertical maxrows " << key_rows
+     << " Left reverse samplen 2 width -4\n"
+     << "set ylabel 'error (relative to each channel amplitude)'\n";
+  auto curves = [&](const char* using_) {
+    gp << "plot ";
+    for (std::size_t i = 0; i < order.size(); ++i)
+      gp << (i ? ", " : "") << "$F" << i << " using " << using_ << " with linespoints pt "
+         << (i < 8 ? 7 : 5) << " title " << gp_quote(legend[i]);  // past 8 the colours repeat
+    gp << "\n";
+  };
+  gp << "set xlabel 'wall time [s]'\n";
+  curves("1:2");
+  gp << "set xlabel 'residual evaluations'\nunset key\n";
+  curves("3:2");
+  gp << "unset multiplot\n";
+  return gp.str();
+}
+
+std::string convergence_script(const std::string& scene_name, const std::string& family,
+                               const std::string& key, const std::vector<double>& x,
+                               const std::vector<double>& error, double slope,
+                               const std::filesystem::path& out) {
+  std::ostringstream data;
+  double sx = 0, sy = 0;
+  int n = 0;
+  for (std::size_t i = 0; i < x.size() && i < error.size(); ++i) {
+    if (!usable(error[i]) || !(x[i] > 0.0)) continue;
+    data << gp_num(x[i], 12) << " " << gp_num(error[i], 12) << "\n";
+    sx += std::log(x[i]);
+    sy += std::log(error[i]);
+    ++n;
+  }
+  if (n == 0) return "";
+  std::ostringstream gp;
+  gp << "# convergence figure of " << scene_name << " (evas study)\n"
+     << gp_terminal(out, 900, 600) << "$D << EOD\n"
+     << data.str() << "EOD\n"
+     << "set logscale xy\nset format y '1e%L'\nset grid\nset key top left\n"
+     << "set xlabel " << gp_quote(key) << "\n"
+     << "set ylabel 'error (relative to each channel amplitude)'\n"
+     << "set title " << gp_quote("convergence: " + family + " on " + scene_name) << "\n";
+  if (!std::isnan(slope)) {
+    const double b = sy / n - slope * sx / n;  // the fit passes through the centroid
+    gp << "f(x) = exp(" << gp_num(b, 12) << ") * x**(" << gp_num(slope, 12) << ")\n"
+       << "plot $D using 1:2 with linespoints pt 7 title 'error', f(x) with lines dt 2 title "
+       << gp_quote("slope " + gp_num(slope, 3)) << "\n";
+  } else {
+    gp << "plot $D using 1:2 with linespoints pt 7 title 'error'\n";
+  }
+  return gp.str();
+}
+
+}  // namespace evas
