@@ -25,14 +25,6 @@ namespace {
 
 using Key = std::array<long, 4>;  // sorted corner ids, -1 padded
 
-struct KeyHash {
-  std::size_t operator()(const Key& k) const {
-    std::size_t h = 1469598103934665603ull;
-    for (long v : k) h = (h ^ static_cast<std::size_t>(v)) * 1099511628211ull;
-    return h;
-  }
-};
-
 Key key_of(const long* corners, int n) {
   Key k = {-1, -1, -1, -1};
   std::copy(corners, corners + n, k.begin());
@@ -80,7 +72,7 @@ std::map<std::string, SurfaceSet> mesh_surfaces(const InpMesh& mesh, const UnitS
       if (is_surface_element(b.type, b.nodes[e].size())) faces_by_id[b.ids[e]] = &b.nodes[e];
   // the sets made of 2-D elements only
   std::map<std::string, std::vector<Face>> sets;
-  std::unordered_map<Key, std::pair<Vec3, int>, KeyHash> behind;  // solid centroid, count
+  std::map<Key, std::pair<Vec3, int>> behind;  // solid centroid, count
   for (const auto& [name, ids] : mesh.element_sets) {
     if (ids.empty()) continue;
     std::vector<Face> faces;

@@ -16,24 +16,13 @@
 #include <sstream>
 
 #include "bodies/interface_modes.h"
+#include "io/text_escape.h"
 
 namespace evas {
 
 namespace fs = std::filesystem;
 
 namespace {
-
-/// Single-quoted for /bin/sh.
-std::string shell_quote(const std::string& s) {
-  std::string o = "'";
-  for (char c : s) {
-    if (c == '\'')
-      o += "'\\''";
-    else
-      o += c;
-  }
-  return o + "'";
-}
 
 std::string tail_of(const std::string& path, int lines) {
   std::ifstream in(path);

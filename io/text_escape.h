@@ -4,6 +4,7 @@
 //   csv_field    one CSV field (RFC 4180): quoted, with quotes doubled, when it
 //                holds a comma, a quote, CR or LF; otherwise as it is
 //   valid_utf8   the text with every invalid UTF-8 sequence replaced by U+FFFD
+//   shell_quote  a POSIX shell word: '...' with ' written as '\'' (any bytes)
 #pragma once
 
 #include <string>
@@ -13,5 +14,6 @@ namespace evas {
 std::string valid_utf8(const std::string& s);
 std::string json_string(const std::string& s);
 std::string csv_field(const std::string& s);
+std::string shell_quote(const std::string& s);
 
 }  // namespace evas

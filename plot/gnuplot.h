@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "io/text_escape.h"  // shell_quote
+
 namespace evas {
 
 /// True when `gnuplot` is on the PATH.
@@ -19,8 +21,6 @@ bool run_gnuplot(const std::filesystem::path& script);
 bool run_gnuplot(const std::vector<std::filesystem::path>& scripts);
 /// A gnuplot string literal: '...' with ' doubled.
 std::string gp_quote(const std::string& s);
-/// A POSIX shell word: '...' with ' written as '\''.
-std::string shell_quote(const std::string& s);
 /// "%.*g" of x, "" for NaN (numbers in scripts and data blocks).
 std::string gp_num(double x, int digits);
 /// The terminal lines of a figure `out` (w x h pixels): pngcairo for .png,
