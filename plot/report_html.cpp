@@ -2,6 +2,7 @@
 #include "plot/report_html.h"
 
 #include <filesystem>
+#include <regex>
 
 namespace evas::report {
 
@@ -11,8 +12,8 @@ const char* kStyle =
     R"(body { font-family: sans-serif; max-width: 1400px; margin: 1em auto; padding: 0 1em; color: #222; }
 h1 { font-size: 1.6em; } h2 { border-bottom: 1px solid #ccc; margin-top: 1.6em; }
 table { border-collapse: collapse; margin: 0.6em 0; font-size: 0.92em; }
-th, td { border: 1px solid #bbb; padding: 0.2em 0.6em; text-align: right; }
-th:first-child, td:first-child { text-align: left; }
+th, td { border: 1px solid #bbb; padding: 0.2em 0.6em; text-align: left; }
+td.n { text-align: right; }
 caption { caption-side: top; text-align: left; font-style: italic; padding-bottom: 0.3em; }
 figure { margin: 0.8em 0; }
 figure img { max-width: 100%; height: auto; border: 1px solid #ddd; }
@@ -34,6 +35,12 @@ const char* kScript = R"(window.addEventListener('load', function () {
   document.body.setAttribute('data-images-loaded', String(loaded));
   document.body.setAttribute('data-images-failed', failed.join(' '));
 });)";
+
+// A number, or an order and its amplitude ("2: 12.3"): right-aligned.
+bool numeric(const std::string& c) {
+  static const std::regex re("[-+]?[0-9][0-9.eE+-]*(: [0-9][0-9.eE+-]*)?");
+  return std::regex_match(c, re);
+}
 
 }  // namespace
 
@@ -85,7 +92,8 @@ void Page::table(const std::vector<std::string>& head,
   body_ << "</tr></thead>\n<tbody>\n";
   for (const auto& r : rows) {
     body_ << "<tr>";
-    for (const auto& c : r) body_ << "<td>" << escape(c) << "</td>";
+    for (const auto& c : r)
+      body_ << (numeric(c) ? "<td class=\"n\">" : "<td>") << escape(c) << "</td>";
     body_ << "</tr>\n";
   }
   body_ << "</tbody>\n</table>\n";
@@ -97,7 +105,7 @@ void Page::figure(const std::string& file, const std::string& alt, const std::st
   const std::string gp = std::filesystem::path(p).replace_extension(".gp").string();
   const std::string dat = std::filesystem::path(p).replace_extension(".dat").string();
   body_ << "<figure id=\"fig" << figures_ << "\">\n<a href=\"" << escape(file) << "\"><img src=\""
-        << escape(file) << "\" alt=\"" << escape(alt) << "\" loading=\"eager\"></a>\n"
+        << escape(file) << "\" alt=\"" << escape(alt) << "\"></a>\n"
         << "<figcaption>Figure " << figures_ << ": " << escape(caption) << " (gnuplot <a href=\""
         << escape(gp) << "\">script</a> and <a href=\"" << escape(dat)
         << "\">data</a>)</figcaption>\n</figure>\n";

@@ -496,7 +496,7 @@ void surface_section(const Run& run, Drawer& draw, report::Page& page, ReportRes
     o.channels = ch;
     o.title = what;
     page.figure(
-        draw.draw("surface" + file_word(tail) + ".png", o), what,
+        draw.draw("surface_" + file_word(tail.substr(1)) + ".png", o), what,
         "The " + what + " (channels *" + tail + ") against crank angle, " + run.span_text() + ".");
     page.table({"channel", "mean", "largest |value|", "unit"}, rows,
                "The " + what + " over " + run.span_text());

@@ -13,8 +13,9 @@
 //                     figure per component), their order spectra and a table
 //                     of the largest orders [kN]
 //   friction power    the bearings' friction_power channels, when there
-//   crank torsion     each torsion request (NAME.twist): angles, twist and
-//                     the twist's order spectrum, when there
+//   crank torsion     each NAME.twist channel (a torsion request's, with its
+//                     markers' angles, or an element's such as the dyno's)
+//                     and its order spectrum, when there
 //   block surface     channels ending in .vn_rms, .vn_mean, .erp; without
 //                     them the section names the output request to add
 //

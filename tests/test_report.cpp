@@ -150,6 +150,14 @@ TEST(Report, HasEverySectionAndFigureAndItsLinksResolve) {
   EXPECT_FALSE(contains(html, "http:"));
   EXPECT_FALSE(contains(html, "https:"));
   EXPECT_FALSE(contains(html, "<link"));
+  // valid HTML5 by HTML Tidy (5.x reads HTML5) when it is installed
+  if (const std::string tidy = which("tidy"); !tidy.empty()) {
+    const fs::path log = dir.parent_path() / "tidy.log";
+    const int rc =
+        std::system((tidy + " -q -e " + index.string() + " > " + log.string() + " 2>&1").c_str());
+    EXPECT_EQ(rc, 0);
+    EXPECT_EQ(read_text(log), "") << "tidy -q -e " << index;
+  }
   // the order table in kN and the notes of what the file does not hold
   EXPECT_TRUE(contains(html, "largest engine orders"));
   EXPECT_TRUE(contains(html, "{surface: SET, body: BODY, name: NAME}"));
@@ -285,4 +293,41 @@ TEST(Report, WithoutJournalBearingsShowsWhatThereIs) {
   EXPECT_EQ(std::set<std::string>(srcs.begin(), srcs.end()),
             (std::set<std::string>{"torsion_crank.png", "order_crank_twist.png", "torsion_dyno.png",
                                    "order_dyno_twist.png"}));
+}
+
+// The block-surface section from channels ending in .vn_rms, .vn_mean and
+// .erp (the surface output request's), here written by hand on a 2-cycle
+// crank-angle grid: one figure and one table per kind.
+TEST(Report, SurfaceVelocityChannelsGetTheirFigures) {
+  TempFolder tmp;
+  const fs::path results = tmp.path() / "results.h5";
+  {
+    evas::ResultsWriter::Options opt;
+    opt.grid = "crank-angle";
+    opt.scene_text = "name: surface-only\n";
+    evas::ResultsWriter w(results.string(),
+                          {{"crank_angle", "deg"},
+                           {"skin.vn_mean", "m/s"},
+                           {"skin.vn_rms", "m/s"},
+                           {"skin.erp", "W"}},
+                          opt);
+    for (int k = 0; k <= 1440; ++k) {
+      const double a = k * M_PI / 180.0;
+      w.append(k / 18000.0, {static_cast<double>(k), 1e-3 * std::sin(2 * a),
+                             2e-3 + 1e-3 * std::cos(a), 0.5 + 0.1 * std::sin(4 * a)});
+    }
+    w.finish(evas::IntegratorStats{}, "completed");
+  }
+  const Outcome o = run_evas({"report", results.string(), "--out", (tmp.path() / "r").string()},
+                             tmp.path() / "report.log");
+  ASSERT_EQ(o.code, 0) << o.log;
+  const std::string html = read_text(tmp.path() / "r" / "index.html");
+  const auto srcs = attribute_values(html, "src");
+  EXPECT_EQ(
+      std::set<std::string>(srcs.begin(), srcs.end()),
+      (std::set<std::string>{"surface_vn_rms.png", "surface_vn_mean.png", "surface_erp.png"}));
+  EXPECT_TRUE(contains(html, "<td>skin.erp</td><td class=\"n\">0.5</td>")) << html;
+  EXPECT_TRUE(contains(html, "Engine report: surface-only"));
+  EXPECT_TRUE(contains(html, "2 whole cycle(s) of 720 deg"));
+  EXPECT_FALSE(contains(html, "no surface-velocity channels"));
 }
