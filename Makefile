@@ -5,7 +5,7 @@ DEMO_OUT ?= demo-out
 DEBS = cmake g++ make libsundials-dev libsuitesparse-dev libeigen3-dev libspectra-dev \
        libboost-program-options-dev libgtest-dev libyaml-cpp-dev libhdf5-dev gnuplot-nox \
        gmsh calculix-ccx pybind11-dev python3-dev python3-numpy python3-scipy python3-pytest \
-       python3-matplotlib libopenmpi-dev openmpi-bin
+       python3-matplotlib libopenmpi-dev openmpi-bin chromium
 
 .PHONY: deps build demo test bench work-precision docs format clean validate sanitize
 
@@ -30,6 +30,9 @@ demo: build
 	./validation/engine/run.sh $(BUILD) $(DEMO_OUT)/validation
 	./scripts/figures.sh $(BUILD) $(DEMO_OUT)/validation/case1/results.h5 $(DEMO_OUT)/figures
 	@echo "figures of the engine (evas plot): $(DEMO_OUT)/figures"
+	./$(BUILD)/evas report $(DEMO_OUT)/validation/case1/results.h5 --out $(DEMO_OUT)/report \
+	  --overwrite > /dev/null
+	@echo "report of the engine's Case 1 (evas report): $(DEMO_OUT)/report/index.html"
 	./$(BUILD)/evas problem andrews --work-precision --out $(DEMO_OUT)/problems/andrews
 	./$(BUILD)/evas problem car-axis --work-precision --out $(DEMO_OUT)/problems/car-axis
 	./$(BUILD)/evas problem fekete --work-precision --out $(DEMO_OUT)/problems/fekete

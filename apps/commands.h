@@ -44,6 +44,8 @@ int cmd_elements(const std::vector<std::string>& args);
 int cmd_modal(const std::vector<std::string>& args);
 int cmd_spectrum(const std::vector<std::string>& args);
 int cmd_plot(const std::vector<std::string>& args);
+/// `evas report RESULTS.h5 --out DIR`: the HTML page of an engine run (plot/report_page.h).
+int cmd_report(const std::vector<std::string>& args);
 /// `evas study work-precision|convergence|stability` (apps/cmd_study.cpp, logic in study/).
 /// Exit codes also: 3 convergence --expect not met, 128 + N stopped by signal N.
 int cmd_study(const std::vector<std::string>& args);

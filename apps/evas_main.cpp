@@ -24,6 +24,8 @@ const char* kUsage =
     "  spectrum RESULTS.h5 order spectrum of a channel over whole engine cycles, or\n"
     "                      (--time) its amplitude, PSD and third-octave bands\n"
     "  plot KIND RESULTS.h5 figures: channels, polar, orbit, film, order, spectrum\n"
+    "  report RESULTS.h5   an engine run's page (--out DIR): bearings, loads, orders,\n"
+    "                      torsion, surface velocity (DIR/index.html and figures)\n"
     "  study SUB SCENE     compare integrators: work-precision, convergence, stability\n"
     "  problem NAME        DAE test problems (andrews, car-axis, ...) scored in digits\n"
     "\n"
@@ -84,6 +86,7 @@ int main(int argc, char** argv) {
     if (cmd == "modal") return evas::cli::cmd_modal(args);
     if (cmd == "spectrum") return evas::cli::cmd_spectrum(args);
     if (cmd == "plot") return evas::cli::cmd_plot(args);
+    if (cmd == "report") return evas::cli::cmd_report(args);
     if (cmd == "study") return evas::cli::cmd_study(args);
     if (cmd == "problem") return evas::cli::cmd_problem(args);
   } catch (const boost::program_options::error& e) {
