@@ -339,6 +339,20 @@ void surface_section(const Run& run, Drawer& draw, report::Page& page, ReportRes
     page.table({"channel", "mean", "largest |value|", "unit"}, rows,
                "The " + what + " over " + run.span_text());
   }
+  // the ERP spectrum of each surface output whose components are in the file
+  for (const auto& e : run.ending(".erp")) {
+    const std::string name = e.substr(0, e.size() - 4);
+    if (run.find(name + ".c0") < 0) continue;
+    PlotOptions o = draw.options("erp");
+    o.channels = {name};
+    o.spectrum.t0 = run.d.time[static_cast<std::size_t>(run.r0)];
+    const std::string what = "equivalent radiated power spectrum of " + name;
+    page.figure(draw.draw("erp_spectrum_" + file_word(name) + ".png", o), what,
+                "The " + what + " over " + run.span_text() +
+                    ": the power of each frequency bin (tonal) and of each third-octave band, "
+                    "in dB re 1 pW (Hann window; evas spectrum --erp " +
+                    name + " --bands third-octave prints the bands).");
+  }
   if (!any) {
     page.paragraph("This results file has no surface-velocity channels (names ending in " +
                        code(".vn_rms") + ", " + code(".vn_mean") + " or " + code(".erp") +
