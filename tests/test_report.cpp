@@ -112,9 +112,11 @@ TEST(Report, HasEverySectionAndFigureAndItsLinksResolve) {
                         "main1, main2, main3, main4, main5", "3000.0 rpm"})
     EXPECT_TRUE(contains(html, s)) << s;
   // every expected figure, each once, each a file of the folder with its script and data
+  // (the engine scene's block side walls: {surface: side_walls, ..., name: skin})
   std::set<std::string> expected = {
-      "loads_fx.png",          "loads_fy.png",     "friction_power.png",  "torsion_crank.png",
-      "order_crank_twist.png", "torsion_dyno.png", "order_dyno_twist.png"};
+      "loads_fx.png",          "loads_fy.png",     "friction_power.png",   "torsion_crank.png",
+      "order_crank_twist.png", "torsion_dyno.png", "order_dyno_twist.png", "surface_vn_rms.png",
+      "surface_vn_mean.png",   "surface_erp.png",  "erp_spectrum_skin.png"};
   for (int b = 1; b <= 5; ++b)
     for (const char* k : {"polar_main", "orbit_main", "film_main"})
       expected.insert(k + std::to_string(b) + ".png");
@@ -160,7 +162,7 @@ TEST(Report, HasEverySectionAndFigureAndItsLinksResolve) {
   }
   // the order table in kN and the notes of what the file does not hold
   EXPECT_TRUE(contains(html, "largest engine orders"));
-  EXPECT_TRUE(contains(html, "{surface: SET, body: BODY, name: NAME}"));
+  EXPECT_TRUE(contains(html, "equivalent radiated power spectrum of skin"));
 }
 
 TEST(Report, ARealBrowserShowsEveryFigure) {
@@ -290,9 +292,11 @@ TEST(Report, WithoutJournalBearingsShowsWhatThereIs) {
   EXPECT_TRUE(contains(html, "no journal-bearing channels"));
   EXPECT_TRUE(contains(html, "{element: NAME}"));
   const auto srcs = attribute_values(html, "src");
-  EXPECT_EQ(std::set<std::string>(srcs.begin(), srcs.end()),
-            (std::set<std::string>{"torsion_crank.png", "order_crank_twist.png", "torsion_dyno.png",
-                                   "order_dyno_twist.png"}));
+  EXPECT_EQ(
+      std::set<std::string>(srcs.begin(), srcs.end()),
+      (std::set<std::string>{"torsion_crank.png", "order_crank_twist.png", "torsion_dyno.png",
+                             "order_dyno_twist.png", "surface_vn_rms.png", "surface_vn_mean.png",
+                             "surface_erp.png", "erp_spectrum_skin.png"}));
 }
 
 // The block-surface section from channels ending in .vn_rms, .vn_mean and
