@@ -89,12 +89,7 @@ std::string level_text(double p) {
 void erp_mode(const ResultsData& d, const std::string& path, const std::string& name,
               const TimeSpectrumOptions& o, double segment_s, double max_f,
               const std::string& bands, const std::string& csv) {
-  std::vector<std::vector<double>> comps;
-  for (int k = 0;; ++k) {
-    const auto it = std::find(d.names.begin(), d.names.end(), name + ".c" + std::to_string(k));
-    if (it == d.names.end()) break;
-    comps.push_back(column(d, static_cast<int>(it - d.names.begin())));
-  }
+  const std::vector<std::vector<double>> comps = erp_components(d.names, d.values, name);
   if (comps.empty()) {
     std::string known;
     for (const std::string& n : d.names)

@@ -431,14 +431,7 @@ void plot_erp(const Record& rec, const PlotOptions& o, const fs::path& out, Figu
     throw InputError("plot erp: give one --channel NAME, the surface output's name");
   const std::string& name = o.channels[0];
   const ResultsData& d = rec.data();
-  std::vector<std::vector<double>> comps;
-  for (int k = 0;; ++k) {
-    const int c = rec.find(name + ".c" + std::to_string(k));
-    if (c < 0) break;
-    comps.emplace_back(static_cast<std::size_t>(d.values.rows()));
-    for (Eigen::Index r = 0; r < d.values.rows(); ++r)
-      comps.back()[static_cast<std::size_t>(r)] = d.values(r, c);
-  }
+  const std::vector<std::vector<double>> comps = erp_components(d.names, d.values, name);
   if (comps.empty()) rec.require(name + ".c0", " (the ERP components of a surface output)");
   std::vector<ErpBand> bands;
   const ErpSpectrum s = erp_spectrum(d.time, comps, o.spectrum, &bands);

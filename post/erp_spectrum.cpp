@@ -1,10 +1,23 @@
 #include "post/erp_spectrum.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "model/types.h"
 
 namespace evas {
+
+std::vector<std::vector<double>> erp_components(const std::vector<std::string>& names,
+                                                const Mat& values, const std::string& name) {
+  std::vector<std::vector<double>> out;
+  for (int k = 0;; ++k) {
+    const std::string want = name + ".c" + std::to_string(k);
+    const auto it = std::find(names.begin(), names.end(), want);
+    if (it == names.end()) return out;
+    const Eigen::Index c = it - names.begin();
+    out.emplace_back(values.col(c).data(), values.col(c).data() + values.rows());
+  }
+}
 
 double erp_level(double power) { return 10.0 * std::log10(power / 1e-12); }
 

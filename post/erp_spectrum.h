@@ -14,8 +14,10 @@
 // written as an empty field, never as a number).
 #pragma once
 
+#include <string>
 #include <vector>
 
+#include "model/types.h"
 #include "post/time_spectrum.h"
 
 namespace evas {
@@ -43,6 +45,12 @@ struct ErpBand {
 ErpSpectrum erp_spectrum(const std::vector<double>& t,
                          const std::vector<std::vector<double>>& components,
                          const TimeSpectrumOptions& o, std::vector<ErpBand>* bands = nullptr);
+
+/// The components NAME.c0, NAME.c1, ... of surface output `name` among the
+/// channels `names`, each a column of `values` (rows x channels); empty when
+/// the channels hold none.
+std::vector<std::vector<double>> erp_components(const std::vector<std::string>& names,
+                                                const Mat& values, const std::string& name);
 
 /// 10 log10(power / 1e-12 W) [dB re 1 pW]; power must be > 0.
 double erp_level(double power);
