@@ -27,6 +27,7 @@
 // kMaxFileBytes (a device or pipe such as /dev/zero is refused before reading).
 #pragma once
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -51,6 +52,11 @@ class PressureTable {
 
   /// Reads the text format above; throws InputError naming file and line.
   static PressureTable read(const std::string& path, double max_gap_deg = kDefaultMaxGap);
+  /// read(path, max_gap_deg), parsed once per process while the file's state
+  /// (model/file_state.h) is unchanged, and shared: a study or sweep parses
+  /// its scene once per point and run. Thread-safe; errors are not kept.
+  static std::shared_ptr<const PressureTable> read_cached(const std::string& path,
+                                                          double max_gap_deg = kDefaultMaxGap);
   /// Writes the text format (unit bar, one row per point).
   void write(const std::string& path, const std::string& comment) const;
 

@@ -398,7 +398,7 @@ ElementType piston_conrod_element_type() {
     const std::string& file = v.text("pressure_file");
     if (!file.empty()) {
       try {
-        gas = std::make_shared<const PressureTable>(PressureTable::read(file));
+        gas = PressureTable::read_cached(file);
       } catch (const InputError& e) {
         throw InputError(where + ": " + e.what());
       }

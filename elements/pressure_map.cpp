@@ -150,7 +150,7 @@ PressureMap PressureMap::read(const std::string& path) {
     std::filesystem::path p(rest.back());
     if (p.is_relative()) p = dir / p;
     try {
-      e.table = PressureTable::read(p.string());
+      e.table = *PressureTable::read_cached(p.string());
     } catch (const InputError& err) {
       throw InputError(at + ": " + err.what());
     }

@@ -1,35 +1,16 @@
 // Modal-body files read once per process (body_cache.h).
 #include "io/body_cache.h"
 
-#include <sys/stat.h>
-
 #include <algorithm>
 #include <deque>
 #include <mutex>
 
 #include "io/body_file.h"
+#include "model/file_state.h"
 
 namespace evas {
 
 namespace {
-
-// What identifies a file's content without reading it.
-struct FileState {
-  std::string path;
-  long long size = -1, mtime_ns = -1, inode = -1;
-  bool operator==(const FileState& o) const {
-    return path == o.path && size == o.size && mtime_ns == o.mtime_ns && inode == o.inode;
-  }
-};
-
-bool file_state(const std::string& path, FileState& out) {
-  struct stat st {};
-  if (::stat(path.c_str(), &st) != 0 || !S_ISREG(st.st_mode)) return false;
-  out = {path, static_cast<long long>(st.st_size),
-         static_cast<long long>(st.st_mtim.tv_sec) * 1000000000LL + st.st_mtim.tv_nsec,
-         static_cast<long long>(st.st_ino)};
-  return true;
-}
 
 struct FileEntry {
   FileState file;
@@ -51,14 +32,29 @@ struct MarkerEntry {
   Marker marker;
 };
 
+struct SurfaceEntry {
+  std::shared_ptr<const ModalBody> body;  // held: its address cannot be reused
+  SurfaceSet set;
+  double rho_c = 0.0;
+  bool per_node = false;
+  SurfaceRadiation radiation;
+};
+
+bool same_set(const SurfaceSet& a, const SurfaceSet& b) {
+  return a.nodes == b.nodes && a.area.size() == b.area.size() && a.area == b.area &&
+         a.normal.rows() == b.normal.rows() && a.normal == b.normal;
+}
+
 constexpr std::size_t kFiles = 8;      // file bodies kept (the oldest go first)
 constexpr std::size_t kDerived = 16;   // derived bodies kept
 constexpr std::size_t kMarkers = 512;  // set-marker fits kept
+constexpr std::size_t kSurfaces = 32;  // surface outputs kept
 
 std::mutex lock;
 std::deque<FileEntry> files;
 std::deque<DerivedEntry> derived;
 std::deque<MarkerEntry> markers;
+std::deque<SurfaceEntry> surfaces;
 
 }  // namespace
 
@@ -93,11 +89,14 @@ std::shared_ptr<const ModalBody> derived_body_cached(
   std::lock_guard<std::mutex> g(lock);
   derived.push_back({f, recipe, body});
   if (derived.size() > kDerived) {
-    // its marker fits go with it: they would keep the body alive
+    // its marker fits and surfaces go with it: they would keep the body alive
     const ModalBody* gone = derived.front().body.get();
     markers.erase(std::remove_if(markers.begin(), markers.end(),
                                  [&](const MarkerEntry& m) { return m.body.get() == gone; }),
                   markers.end());
+    surfaces.erase(std::remove_if(surfaces.begin(), surfaces.end(),
+                                  [&](const SurfaceEntry& m) { return m.body.get() == gone; }),
+                   surfaces.end());
     derived.pop_front();
   }
   return body;
@@ -130,6 +129,27 @@ Marker set_marker_cached(const std::string& name, int body,
       {data, node_ids, weights, centre != nullptr, centre ? *centre : Vec3::Zero(), m});
   if (markers.size() > kMarkers) markers.pop_front();
   return m;
+}
+
+SurfaceRadiation surface_radiation_cached(const std::shared_ptr<const ModalBody>& data,
+                                          const SurfaceSet& set, double rho_c, bool per_node,
+                                          const std::string& who) {
+  auto same = [&](const SurfaceEntry& e) {
+    return e.body == data && e.rho_c == rho_c && e.per_node == per_node && same_set(e.set, set);
+  };
+  bool cached_body = false;
+  {
+    std::lock_guard<std::mutex> g(lock);
+    for (const SurfaceEntry& e : surfaces)
+      if (same(e)) return e.radiation;
+    for (const DerivedEntry& e : derived) cached_body = cached_body || e.body == data;
+  }
+  SurfaceRadiation r(*data, set, rho_c, per_node, who);
+  if (!cached_body) return r;
+  std::lock_guard<std::mutex> g(lock);
+  surfaces.push_back({data, set, rho_c, per_node, r});
+  if (surfaces.size() > kSurfaces) surfaces.pop_front();
+  return r;
 }
 
 }  // namespace evas

@@ -8,6 +8,7 @@
 // derived_body_cached keeps the body a scene makes of such a file (checked,
 // truncated, damped) as one shared, immutable object per recipe, so that a
 // parse copies nothing; set_marker_cached fits a set marker on such a body
+// once, and surface_radiation_cached forms a surface output's ERP matrix on it
 // once. Everything here is process-local and thread-safe.
 #pragma once
 
@@ -18,6 +19,7 @@
 
 #include "model/marker.h"
 #include "model/modal_body.h"
+#include "model/surface.h"
 
 namespace evas {
 
@@ -38,5 +40,12 @@ Marker set_marker_cached(const std::string& name, int body,
                          const std::shared_ptr<const ModalBody>& data,
                          const std::vector<long>& node_ids, const std::vector<double>& weights,
                          const Vec3* centre);
+
+/// SurfaceRadiation(*data, set, rho_c, per_node, who), formed once per body,
+/// set (by its content), rho_c and per_node when `data` is a body of
+/// derived_body_cached (other bodies are formed each time), and copied out.
+SurfaceRadiation surface_radiation_cached(const std::shared_ptr<const ModalBody>& data,
+                                          const SurfaceSet& set, double rho_c, bool per_node,
+                                          const std::string& who);
 
 }  // namespace evas

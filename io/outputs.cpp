@@ -5,6 +5,8 @@
 #include <iomanip>
 #include <sstream>
 
+#include "io/body_cache.h"
+
 namespace evas {
 
 namespace {
@@ -139,9 +141,9 @@ OutputSet::OutputSet(const OutputSpec& spec, System& system, double t_start, dou
       case ChannelRequest::Kind::Surface: {
         const Body& b = model.bodies().at(req.index);
         src.surface = static_cast<int>(surfaces_.size());
-        surfaces_.emplace_back(
-            *b.data, *req.surface, req.rho_c, req.per_node,
-            "output: surface '" + req.name + "' (body '" + b.name + "', set '" + req.set + "')");
+        surfaces_.push_back(surface_radiation_cached(
+            b.data, *req.surface, req.rho_c, req.per_node,
+            "output: surface '" + req.name + "' (body '" + b.name + "', set '" + req.set + "')"));
         const SurfaceRadiation& sr = surfaces_.back();
         channels_.push_back({req.name + ".vn_mean", "m/s"});
         channels_.push_back({req.name + ".vn_rms", "m/s"});

@@ -75,6 +75,7 @@ void SceneReader::read_body(const Node& b, std::size_t i, Model& model) {
           body.damping[k] = body.kinds[k] == ModeKind::Elastic
                                 ? 2.0 * zeta * std::sqrt(std::max(0.0, body.eigenvalues[k]))
                                 : 0.0;
+      body.validate();  // once per cached body, not once per parse
       return body;
     };
     try {
@@ -92,7 +93,7 @@ void SceneReader::read_body(const Node& b, std::size_t i, Model& model) {
       lof_node ? read_lof(lof_node, item + " lof") : Lof::fixed(Vec3::Zero(), Mat3::Identity());
   int index = -1;
   try {
-    index = model.add_body(name, data, lof);
+    index = model.add_body(name, data, lof, /*checked=*/!gen);
   } catch (const InputError& e) {
     rethrow(b, item, e);
   }

@@ -7,11 +7,11 @@
 
 namespace evas {
 
-int Model::add_body(const std::string& name, std::shared_ptr<const ModalBody> data,
-                    const Lof& lof) {
+int Model::add_body(const std::string& name, std::shared_ptr<const ModalBody> data, const Lof& lof,
+                    bool checked) {
   for (const auto& b : bodies_)
     if (b.name == name) throw InputError("body '" + name + "' defined twice");
-  data->validate();
+  if (!checked) data->validate();
   Body b;
   b.name = name;
   b.data = std::move(data);

@@ -35,7 +35,10 @@ class Model {
   /// Adds a body: its invariants and mass properties (the stored ones of the
   /// full body when it carries them, as a reduced body must; else computed from
   /// its nodes) and the location of its rigid basis modes.
-  int add_body(const std::string& name, std::shared_ptr<const ModalBody> data, const Lof& lof);
+  /// `checked`: data->validate() has passed already (a body a study shares
+  /// between its parses); otherwise it is checked here.
+  int add_body(const std::string& name, std::shared_ptr<const ModalBody> data, const Lof& lof,
+               bool checked = false);
   int add_marker(Marker m);
   int add_element(std::unique_ptr<Element> e);
   /// Adds a joint (solver/joint.h); checks its name, markers and length.

@@ -9,6 +9,7 @@
 
 #include "integrators/settings.h"
 #include "io/results.h"
+#include "plot/gnuplot_process.h"
 #include "study/report.h"
 
 namespace evas::study::detail {
@@ -462,7 +463,8 @@ bool plot(const Options& opt, const fs::path& script, const std::string& text, S
   return true;
 }
 
-void plot_all(const Options& opt, const std::vector<Figure>& figures, StudyInfo& info) {
+void plot_all(const Options& opt, const std::vector<Figure>& figures, StudyInfo& info,
+              GnuplotProcess* started) {
   std::vector<fs::path> scripts;
   for (const Figure& f : figures) {
     write_file_atomic(f.script, f.text);
@@ -472,7 +474,10 @@ void plot_all(const Options& opt, const std::vector<Figure>& figures, StudyInfo&
   if (!opt.plot || !have_gnuplot()) return;
   std::error_code ec;
   for (const Figure& f : figures) fs::remove(f.png, ec);  // no stale figure passes for a new one
-  run_gnuplot(scripts);
+  if (started && started->ready())
+    started->draw(scripts);
+  else
+    run_gnuplot(scripts);
   for (const Figure& f : figures) {
     if (!fs::exists(f.png) && (!run_gnuplot(f.script) || !fs::exists(f.png))) {
       say(opt, "evas study: gnuplot failed on " + f.script.string());

@@ -15,6 +15,10 @@
 #include "io/hdf5_util.h"
 #include "study/study.h"
 
+namespace evas {
+class GnuplotProcess;
+}
+
 namespace evas::study::detail {
 
 namespace fs = std::filesystem;
@@ -127,8 +131,10 @@ struct Figure {
   std::string text;
   fs::path png;
 };
-/// plot() of figures of one folder with one gnuplot process; a figure that
-/// process did not draw is tried alone (and reported as plot() does).
-void plot_all(const Options& opt, const std::vector<Figure>& figures, StudyInfo& info);
+/// plot() of figures of one folder with one gnuplot process (`started`, when
+/// given and ready, else a new one); a figure that process did not draw is
+/// tried alone (and reported as plot() does).
+void plot_all(const Options& opt, const std::vector<Figure>& figures, StudyInfo& info,
+              GnuplotProcess* started = nullptr);
 
 }  // namespace evas::study::detail

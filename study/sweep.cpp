@@ -11,6 +11,7 @@
 
 #include "integrators/settings.h"
 #include "io/run_lock.h"
+#include "plot/gnuplot_process.h"
 #include "study/report.h"
 #include "study/sweep_detail.h"
 
@@ -106,7 +107,12 @@ SweepResult sweep(const Options& opt, const SweepOptions& so) {
   auto since = [](Clock::time_point t) {
     return std::chrono::duration<double>(Clock::now() - t).count();
   };
+  // the figures' gnuplot starts now and loads while the scene is read and
+  // the points run (a --point task draws nothing)
+  std::unique_ptr<GnuplotProcess> gnuplot;
+  if (opt.plot && so.point < 0) gnuplot = std::make_unique<GnuplotProcess>();
   Setup s = prepare(probe_opt);
+  const double setup_seconds = since(started);
 
   SweepData d;
   SweepResult& res = d.res;
@@ -179,8 +185,11 @@ SweepResult sweep(const Options& opt, const SweepOptions& so) {
       res.tasks.push_back(std::move(st));
     }
   }
+  const double check_seconds = since(started) - setup_seconds;
   d.amplitude.assign(res.tasks.size(), {});
   res.info = make_info(s);
+  res.setup_seconds = setup_seconds;
+  res.check_seconds = check_seconds;
   res.info.window = "last " + std::to_string(so.cycles) + " cycle(s) per spectrum";
   const fs::path dir = s.out;
   auto key_of = [&](std::size_t k) {
@@ -280,8 +289,9 @@ SweepResult sweep(const Options& opt, const SweepOptions& so) {
   if (stopped(opt)) res.info.interrupted = true;
   d.natural = campbell_frequencies(s.src, d, so);
   write_sweep_h5(opt, d, so);
-  plot_sweep(opt, d, so);
-  res.coordinator_seconds += since(after);
+  plot_sweep(opt, d, so, gnuplot.get());
+  res.finish_seconds = since(after);
+  res.coordinator_seconds += res.finish_seconds;
   // the coordinator's own processor time: the runs of forked workers and of
   // other ranks are not in it (in one process they are, so none is given)
   if (!so.merge && runner.width() > 1)

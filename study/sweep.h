@@ -58,6 +58,10 @@ struct SweepResult {
   /// Wall time the coordinator spent on its own (setup, reading every point's
   /// scene, files, figures), not waiting for runs [s].
   double coordinator_seconds = 0.0;
+  /// Its parts [s]: reading the scene (bodies, tables) before anything else;
+  /// checking every point's scene; after the runs (natural frequencies,
+  /// sweep.h5, figures). The rest is the files written as results come in.
+  double setup_seconds = 0.0, check_seconds = 0.0, finish_seconds = 0.0;
   /// Its processor time over the whole sweep, when the runs were in other
   /// processes (workers, ranks); NaN otherwise [s].
   double coordinator_cpu_seconds = std::numeric_limits<double>::quiet_NaN();

@@ -40,6 +40,7 @@ bool read_task_file(const fs::path& path, SweepData& d, std::size_t k, const std
 
 void write_sweep_tables(const Options& opt, SweepData& d);
 void write_sweep_h5(const Options& opt, SweepData& d, const SweepOptions& so);
-void plot_sweep(const Options& opt, SweepData& d, const SweepOptions& so);
+void plot_sweep(const Options& opt, SweepData& d, const SweepOptions& so,
+                GnuplotProcess* started = nullptr);
 
 }  // namespace evas::study::detail

@@ -194,8 +194,10 @@ void write_sweep_tables(const Options& opt, SweepData& d) {
      << "- runner: " << res.runner
      << (res.resumed ? ", " + std::to_string(res.resumed) + " task(s) from an earlier run"
                      : std::string())
-     << "\n- coordinator: " << gnum(res.coordinator_seconds, 3)
-     << " s of its own (setup, every point's scene read, files, figures)"
+     << "\n- coordinator: " << gnum(res.coordinator_seconds, 3) << " s of its own: setup "
+     << gnum(res.setup_seconds, 2) << " s, checking the points' scenes "
+     << gnum(res.check_seconds, 2) << " s, after the runs (sweep.h5, figures) "
+     << gnum(res.finish_seconds, 2) << " s, the rest files as results came in"
      << (std::isnan(res.coordinator_cpu_seconds)
              ? std::string()
              : "; processor time " + gnum(res.coordinator_cpu_seconds, 3) + " s")

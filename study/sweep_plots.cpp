@@ -29,7 +29,7 @@ SweepFigureData figure_data(const SweepData& d, const SweepOptions& so) {
 
 }  // namespace
 
-void plot_sweep(const Options& opt, SweepData& d, const SweepOptions& so) {
+void plot_sweep(const Options& opt, SweepData& d, const SweepOptions& so, GnuplotProcess* started) {
   auto& files = d.res.info.files;
   const fs::path dir = d.res.info.out_dir;
   files.insert(files.begin(), {(dir / "sweep.csv").string(), (dir / "sweep.md").string(),
@@ -50,7 +50,7 @@ void plot_sweep(const Options& opt, SweepData& d, const SweepOptions& so) {
        dir / "waterfall.png"}};
   if (std::string c = campbell_script(f, dir / "campbell.png"); !c.empty())
     figures.push_back({dir / "campbell.gp", std::move(c), dir / "campbell.png"});
-  plot_all(opt, figures, d.res.info);
+  plot_all(opt, figures, d.res.info, started);
 }
 
 }  // namespace evas::study::detail

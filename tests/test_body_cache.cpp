@@ -11,6 +11,7 @@
 #include "io/body_cache.h"
 #include "io/body_file.h"
 #include "io/scene.h"
+#include "model/lof.h"
 #include "random_body.h"
 
 namespace evas {
@@ -107,6 +108,42 @@ TEST_F(BodyCache, CachedMarkerFitEqualsAFreshFit) {
   auto own = std::make_shared<const ModalBody>(test_bodies::random_body(20, 6, 3));
   const Marker m = set_marker_cached("y", 0, own, ids, {}, nullptr);
   EXPECT_EQ(m.Bu, make_set_marker("y", 0, *own, ids, {}).Bu);
+}
+
+TEST_F(BodyCache, CachedSurfaceEqualsAFreshOneAndKeysOnItsContent) {
+  const fs::path file = dir_ / "b.h5";
+  write_body_file(file.string(), test_bodies::random_body(20, 6, 4));
+  const Scene a = parse(file, 6);
+  const auto& data = a.model->bodies()[0].data;
+  SurfaceSet set;
+  set.nodes = data->node_sets.at("all");
+  const auto n = static_cast<Eigen::Index>(set.nodes.size());
+  set.area = Vec::LinSpaced(n, 1e-4, 3e-4);
+  set.normal.resize(n, 3);
+  for (Eigen::Index i = 0; i < n; ++i) set.normal.row(i) = Vec3(i % 3 == 0, i % 3 == 1, i % 3 == 2);
+  LofState lof;
+  lof.v_GL = Vec3(0.1, -0.2, 0.05);
+  lof.w_GL_G = Vec3(0.0, 3.0, 1.0);
+  const Vec qdot = Vec::LinSpaced(data->num_modes(), -0.4, 0.9);
+  auto values = [&](const SurfaceRadiation& r) {
+    std::vector<double> out(static_cast<std::size_t>(r.values()));
+    r.evaluate(lof, qdot.data(), out.data());
+    return out;
+  };
+  const std::vector<double> fresh = values(SurfaceRadiation(*data, set, 413.0, true, "t"));
+  for (int pass = 0; pass < 2; ++pass)  // the first forms, the second is served
+    EXPECT_EQ(values(surface_radiation_cached(data, set, 413.0, true, "t")), fresh);
+  // another rho c, or another area on the same nodes, is not served the first
+  const std::vector<double> louder = values(surface_radiation_cached(data, set, 826.0, true, "t"));
+  EXPECT_DOUBLE_EQ(louder[2], 2.0 * fresh[2]);
+  SurfaceSet bigger = set;
+  bigger.area *= 4.0;
+  const std::vector<double> wide = values(surface_radiation_cached(data, bigger, 413.0, true, "t"));
+  EXPECT_DOUBLE_EQ(wide[2], 4.0 * fresh[2]);
+  EXPECT_DOUBLE_EQ(wide[0], fresh[0]);  // the mean normal velocity is per area
+  // and the error of a bad request is thrown each time, never cached away
+  for (int pass = 0; pass < 2; ++pass)
+    EXPECT_THROW(surface_radiation_cached(data, set, -1.0, true, "t"), InputError);
 }
 
 }  // namespace

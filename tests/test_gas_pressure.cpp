@@ -251,3 +251,26 @@ TEST(GasPressure, UniformTableEntersTheIntervalsOfTheBisection) {
     }
   EXPECT_EQ(compared, 3 * (2300 + 20000));
 }
+
+// read_cached: one parse per file state, shared; a rewritten file is read
+// again; another gap is another table; an error is thrown each time.
+TEST(GasPressure, CachedTablesFollowTheirFile) {
+  const double gap = 200.0;
+  const std::string body = "# unit: bar\n0 1.0\n180 2.0\n360 4.0\n540 3.0\n";
+  const std::string path = temp_file("cached", body);
+  const auto a = PressureTable::read_cached(path, gap), b = PressureTable::read_cached(path, gap);
+  EXPECT_EQ(a.get(), b.get());
+  EXPECT_DOUBLE_EQ((*a)(2 * M_PI), 4e5);
+  EXPECT_NE(PressureTable::read_cached(path, 250.0).get(), a.get());
+  // a new file under the same name (another size here): read again
+  std::remove(path.c_str());
+  std::ofstream(path) << "# unit: bar\n0 1.0\n180 2.0\n360 40.0\n540 3.0\n";
+  const auto c = PressureTable::read_cached(path, gap);
+  EXPECT_NE(c.get(), a.get());
+  EXPECT_DOUBLE_EQ((*c)(2 * M_PI), 40e5);
+  EXPECT_DOUBLE_EQ((*a)(2 * M_PI), 4e5);  // the first stays what it was
+  const std::string bad = temp_file("cached_bad", "# unit: bar\n0 1.0\n");
+  for (int pass = 0; pass < 2; ++pass)
+    EXPECT_THROW(PressureTable::read_cached(bad, gap), InputError);
+  EXPECT_THROW(PressureTable::read_cached(path + ".missing", gap), InputError);
+}

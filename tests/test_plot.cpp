@@ -9,6 +9,8 @@
 #include <sstream>
 
 #include "io/results.h"
+#include "plot/gnuplot.h"
+#include "plot/gnuplot_process.h"
 #include "run_faults_support.h"
 
 namespace {
@@ -215,4 +217,38 @@ TEST(Plot, ErpOfTheBlockSideWallsFromItsComponents) {
                          "in the file: skin)"),
             std::string::npos)
       << bad.log;
+}
+
+// A gnuplot process started before its figures (plot/gnuplot_process.h), as a
+// sweep starts it: it draws the scripts it is given in their folder, says when
+// gnuplot failed on one, and one that never draws ends with its owner.
+TEST(Plot, AStartedGnuplotDrawsItsScriptsLater) {
+  if (!evas::have_gnuplot()) GTEST_SKIP() << "gnuplot is not installed";
+  TempFolder tmp;
+  const std::vector<fs::path> scripts = {tmp.path() / "a.gp", tmp.path() / "b.gp"};
+  for (const auto& s : scripts) {
+    std::ofstream f(s);
+    f << evas::gp_terminal(fs::path(s).replace_extension(".png"), 200, 150) << "plot sin(x)\n";
+  }
+  {
+    evas::GnuplotProcess gp;
+    ASSERT_TRUE(gp.ready());
+    EXPECT_TRUE(gp.draw(scripts));
+    EXPECT_FALSE(gp.ready());
+    EXPECT_FALSE(gp.draw(scripts));  // once only
+  }
+  for (const char* png : {"a.png", "b.png"}) {
+    ASSERT_TRUE(fs::exists(tmp.path() / png)) << png;
+    EXPECT_GT(fs::file_size(tmp.path() / png), 500u) << png;
+  }
+  // a script gnuplot refuses: false, and the figure is not there
+  {
+    std::ofstream f(tmp.path() / "bad.gp");
+    f << evas::gp_terminal(tmp.path() / "bad.png", 200, 150) << "plot $NoSuchBlock\n";
+  }
+  evas::GnuplotProcess gp;
+  EXPECT_FALSE(gp.draw({tmp.path() / "bad.gp"}));
+  EXPECT_FALSE(fs::exists(tmp.path() / "bad.png") && fs::file_size(tmp.path() / "bad.png") > 500);
+  evas::GnuplotProcess unused;  // ends with the test, drawing nothing
+  EXPECT_TRUE(unused.ready());
 }
