@@ -39,6 +39,7 @@ demo: build
 	./$(BUILD)/evas problem crank --work-precision --out $(DEMO_OUT)/problems/crank
 	./$(BUILD)/evas problem chemakzo --work-precision --out $(DEMO_OUT)/problems/chemakzo
 	./$(BUILD)/evas problem transamp --work-precision --out $(DEMO_OUT)/problems/transamp
+	./$(BUILD)/evas problem wheelset --work-precision --out $(DEMO_OUT)/problems/wheelset
 
 # The paper's validation: Case 1 (soft mounts) vs Case 2 (rigid ground), main-bearing
 # loads and their order spectra (docs/validation.md).

@@ -11,6 +11,7 @@
 #include "problems/pendulum.h"
 #include "problems/slider_crank.h"
 #include "problems/transistor.h"
+#include "problems/wheelset.h"
 
 namespace evas::problems {
 
@@ -178,6 +179,28 @@ std::vector<LibraryProblem> build() {
         "IVP Test Set (Mazzia & Magherini, Bari), problem transamp, PSIDE at rtol = atol "
         "= 1e-14";
     p.make_implicit = [] { return std::make_unique<Transistor>(); };
+    v.push_back(std::move(p));
+  }
+  {
+    LibraryProblem p;
+    p.name = "wheelset";
+    p.description =
+        "railway wheelset on a straight track (hunting, creep forces): 17 unknowns, index 2, "
+        "M(phi) y' = f made constant-mass, t in [0, 10] (IVP Test Set; Simeon, Fuehrer & "
+        "Rentrop 1991)";
+    p.t_end = 10.0;
+    // x, y, z, theta, phi, their velocities, beta', psi_R, xi_R, psi_L, xi_L,
+    // the multipliers / 1e4 (the test set's order of its 17 unknowns)
+    p.reference_y = {0.86355386965811e-02,  0.13038281022727e-04,  -0.93635784016818e-04,
+                     -0.13642299804033e-01, 0.15292895005422e-02,  -0.76985374142666e-01,
+                     -0.25151106429207e-03, 0.20541188079539e-02,  -0.23904837703692e+00,
+                     -0.13633468454173e-01, -0.24421377661131e+00, -0.33666751972196e-03,
+                     -0.15949425684022e+00, 0.37839614386969e-03,  0.14173214964613e+00,
+                     -0.10124044903201e-01, -0.56285630573753e-02};
+    p.source =
+        "IVP Test Set (Mazzia & Magherini, Bari), problem wheelset, DASSL at rtol = atol = "
+        "1e-9 (multipliers out of the error control)";
+    p.make_implicit = [] { return std::make_unique<Wheelset>(); };
     v.push_back(std::move(p));
   }
   return v;
