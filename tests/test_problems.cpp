@@ -100,7 +100,7 @@ TEST(Problems, PartsMatchDifferences) {
   }
 }
 
-// The first-order implicit problems (chemakzo, transamp): df/dy against central
+// The first-order implicit problems (chemakzo, transamp, wheelset): df/dy against central
 // differences at a state near the start, and the published start consistent
 // (M y'(0) = f(0, y(0)) to the digits the test set gives y'(0) with).
 TEST(Problems, ImplicitPartsMatchDifferences) {
@@ -133,7 +133,7 @@ TEST(Problems, ImplicitPartsMatchDifferences) {
     }
     EXPECT_LT(rel_err(J, Jfd), 1e-6) << "J\n" << J << "\nJfd\n" << Jfd;
   }
-  EXPECT_EQ(seen, 2);
+  EXPECT_EQ(seen, 3);
 }
 
 // The slider crank as transcribed (problems/slider_crank.cpp) against the
@@ -511,7 +511,7 @@ TEST(Problems, Command) {
   text = run_evas("problem andrew", code);
   EXPECT_EQ(code, 1) << text;
   EXPECT_NE(text.find("no problem named 'andrew' (known: andrews, car-axis, pendulum, fekete, "
-                      "crank, chemakzo, transamp)"),
+                      "crank, chemakzo, transamp, wheelset)"),
             std::string::npos)
       << text;
   // a first-order problem: its components, digits and summary; integrators it refuses
