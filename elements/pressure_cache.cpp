@@ -34,6 +34,7 @@ std::shared_ptr<const PressureTable> PressureTable::read_cached(const std::strin
       if (e.file == f && e.max_gap_deg == max_gap_deg) return e.table;
   }
   auto table = std::make_shared<const PressureTable>(read(path, max_gap_deg));
+  if (!file_unchanged(f)) return table;  // replaced while read: not kept
   std::lock_guard<std::mutex> g(lock);
   tables.push_back({f, max_gap_deg, table});
   if (tables.size() > kTables) tables.pop_front();

@@ -67,6 +67,7 @@ ModalBody read_body_file_cached(const std::string& path) {
       if (e.file == f) return e.body;
   }
   FileEntry e{f, read_body_file(path)};
+  if (!file_unchanged(f)) return std::move(e.body);  // replaced while read: not kept
   ModalBody out = e.body;
   std::lock_guard<std::mutex> g(lock);
   files.push_back(std::move(e));
@@ -86,6 +87,7 @@ std::shared_ptr<const ModalBody> derived_body_cached(
       if (e.file == f && e.recipe == recipe) return e.body;
   }
   auto body = std::make_shared<const ModalBody>(derive(read_body_file_cached(path)));
+  if (!file_unchanged(f)) return body;  // replaced while read: not kept
   std::lock_guard<std::mutex> g(lock);
   derived.push_back({f, recipe, body});
   if (derived.size() > kDerived) {

@@ -14,4 +14,9 @@ bool file_state(const std::string& path, FileState& out) {
   return true;
 }
 
+bool file_unchanged(const FileState& f) {
+  FileState now;
+  return file_state(f.path, now) && now == f;
+}
+
 }  // namespace evas

@@ -19,5 +19,9 @@ struct FileState {
 /// The state of the regular file `path`; false when it is missing or not a
 /// regular file.
 bool file_state(const std::string& path, FileState& out);
+/// True when the file still has the state `f` (a cache checks this after
+/// reading, so that a file replaced during the read is not kept under the
+/// state it had before).
+bool file_unchanged(const FileState& f);
 
 }  // namespace evas
