@@ -10,6 +10,7 @@
 #include "io/hdf5_util.h"
 #include "model/types.h"
 #include "plot/gnuplot.h"
+#include "plot/study_file.h"
 
 namespace evas {
 
@@ -33,13 +34,9 @@ WorkPrecisionData read_work_precision(const std::string& path) {
   h5::Quiet quiet;
   try {
     h5::Handle f = h5::open_file(path);
-    const std::string kind =
-        h5::has_attribute(f, "study") ? h5::read_string_attribute(f, "study") : "";
-    if (kind != "work-precision")
-      throw InputError("plot work-precision: " + path + " is not a work-precision study's file (" +
-                       (kind.empty() ? std::string("no 'study' attribute: a run's results?")
-                                     : "a '" + kind + "' study's") +
-                       "); `evas study work-precision` writes study.h5");
+    expect_study_file(f, path, "work-precision", "plot work-precision",
+                      "a work-precision study's file",
+                      "`evas study work-precision` writes study.h5");
     d.scene_name = h5::read_string_attribute(f, "scene_name");
     d.window = h5::read_string_attribute(f, "window");
     d.norm = h5::read_string_attribute(f, "norm");

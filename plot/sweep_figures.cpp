@@ -9,6 +9,7 @@
 #include "io/hdf5_util.h"
 #include "model/types.h"
 #include "plot/gnuplot.h"
+#include "plot/study_file.h"
 
 namespace evas {
 
@@ -85,13 +86,8 @@ SweepFigureData read_sweep_figures(const std::string& path, const std::string& w
   h5::Quiet quiet;
   try {
     h5::Handle f = h5::open_file(path);
-    const std::string kind =
-        h5::has_attribute(f, "study") ? h5::read_string_attribute(f, "study") : "";
-    if (kind != "sweep")
-      throw InputError((why.empty() ? "" : why + ": ") + path + " is not a sweep file (" +
-                       (kind.empty() ? std::string("no 'study' attribute: a run's results?")
-                                     : "a '" + kind + "' study's file") +
-                       "); `evas study sweep` writes sweep.h5 into its folder");
+    expect_study_file(f, path, "sweep", why, "a sweep file",
+                      "`evas study sweep` writes sweep.h5 into its folder");
     d.scene_name = h5::read_string_attribute(f, "scene_name");
     d.cycles = static_cast<int>(h5::read_int_attribute(f, "cycles_per_spectrum"));
     std::vector<hsize_t> dims;
