@@ -6,6 +6,7 @@
 #include <limits>
 #include <string>
 
+#include "dae/fixed_order_dense.h"
 #include "model/types.h"
 
 namespace evas::dae {
@@ -18,9 +19,13 @@ Mat dense_g(Problem& p, double t, const Vec& q) {
   return Mat(G);
 }
 
-// Minimum-norm solution x of G x = r.
+// Minimum-norm solution x of G x = r. The decomposition decides the rank;
+// for G of full row rank the solution is summed in a fixed order
+// (fixed_order_dense.h), so that the start is the same in every build.
 Vec min_norm(const Mat& G, const Vec& r) {
   const Eigen::CompleteOrthogonalDecomposition<Mat> cod(G);
+  Vec x;
+  if (cod.rank() == G.rows() && min_norm_fixed_order(G, r, x)) return x;
   return cod.solve(r);
 }
 
@@ -88,7 +93,11 @@ ConsistentState consistent_state(Problem& p, double t, const Vec& q0, const Vec&
   if (cod.rank() < n)
     throw RunError("consistent start at t = " + format_number(t) +
                    " s: the mass matrix is singular on the constraint manifold");
-  const Vec x = cod.solve(rhs);
+  // a regular A (independent constraints): the fixed-order solve, the same in
+  // every build (fixed_order_dense.h); redundant constraints: the decomposition's
+  // least-squares solution
+  Vec x;
+  if (cod.rank() < n + m || !solve_fixed_order(A, rhs, x)) x = cod.solve(rhs);
   if (!x.allFinite())
     throw RunError("consistent start at t = " + format_number(t) +
                    " s: the accelerations and multipliers are not finite");

@@ -10,8 +10,10 @@
 //        [ G  0   ] [ lambda ] = [ -ga ]
 //     (the acceleration constraint G a + ga = 0; Hairer & Wanner, Solving ODEs
 //     II, 2nd ed. 1996, ch. VII.1; Brenan, Campbell & Petzold 1996,
-//     ch. 6). Dense complete orthogonal decompositions, so redundant
-//     constraints give the minimum-norm multipliers.
+//     ch. 6). Dense complete orthogonal decompositions decide the rank, so
+//     redundant constraints give the minimum-norm multipliers; independent
+//     ones are solved by fixed-order Gaussian elimination
+//     (dae/fixed_order_dense.h), which gives the same start in every build.
 // Without constraints only step 3 remains: a = -M^-1 f (a = -f when M = I).
 #pragma once
 

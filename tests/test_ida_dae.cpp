@@ -96,7 +96,10 @@ void print(const std::string& what, const PendulumRun& r) {
 // m (g0 cos th + L th'^2) / (2 L)) follow the exact solution. Index-3 leaves v
 // out of the error test and its lambda carries errors O(tol / h^2) after a
 // sudden step reduction (Hairer & Wanner 1996, ch. VII): only its positions
-// are checked.
+// are checked. GGL's largest multiplier error over the 10 periods follows the
+// step sequence, which the start's last bits move: 8.5e-3 with the start of
+// Eigen's decomposition, 2.3e-2 with the fixed-order start (2026-11-29,
+// dae/fixed_order_dense.h; the same in every build); bound 3e-2.
 TEST(IdaDae, Index3AndGglKeepConstraint) {
   for (const char* f : {"index-3", "ggl", "default"}) {
     problems::Pendulum p(kMass, kLength, kG, kTheta0);
@@ -110,7 +113,7 @@ TEST(IdaDae, Index3AndGglKeepConstraint) {
       EXPECT_LT(r.pos_err, 1e-3) << f;
     } else {
       EXPECT_LT(r.pos_err, 1e-5) << f;
-      EXPECT_LT(r.lambda_err, 1e-2) << f;
+      EXPECT_LT(r.lambda_err, 3e-2) << f;
       EXPECT_LT(r.gv_max, 1e-6) << f;
     }
   }
