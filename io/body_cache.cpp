@@ -52,6 +52,7 @@ constexpr std::size_t kSurfaces = 32;  // surface outputs kept
 
 std::mutex lock;
 std::deque<FileEntry> files;
+std::deque<FileState> seen;  // files read once (not kept)
 std::deque<DerivedEntry> derived;
 std::deque<MarkerEntry> markers;
 std::deque<SurfaceEntry> surfaces;
@@ -66,13 +67,25 @@ ModalBody read_body_file_cached(const std::string& path) {
     for (const FileEntry& e : files)
       if (e.file == f) return e.body;
   }
-  FileEntry e{f, read_body_file(path)};
-  if (!file_unchanged(f)) return std::move(e.body);  // replaced while read: not kept
-  ModalBody out = e.body;
+  // The first read of a file is not kept: its one use (the scene's body,
+  // derived once and kept by derived_body_cached) then costs no copy of the
+  // file's 10 MB. A file read a second time (another recipe of it) is kept.
+  bool seen_before = false;
+  {
+    std::lock_guard<std::mutex> g(lock);
+    seen_before = std::find(seen.begin(), seen.end(), f) != seen.end();
+  }
+  ModalBody body = read_body_file(path);
+  if (!file_unchanged(f)) return body;  // replaced while read: not kept
   std::lock_guard<std::mutex> g(lock);
-  files.push_back(std::move(e));
+  if (!seen_before) {
+    seen.push_back(f);
+    if (seen.size() > kFiles) seen.pop_front();
+    return body;
+  }
+  files.push_back({f, body});
   if (files.size() > kFiles) files.pop_front();
-  return out;
+  return body;
 }
 
 std::shared_ptr<const ModalBody> derived_body_cached(

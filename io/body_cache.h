@@ -23,7 +23,8 @@
 
 namespace evas {
 
-/// read_body_file(path), from the cache when the file has not changed.
+/// read_body_file(path), from the cache when the file has not changed (a file
+/// is kept from its second read on: the first is usually its only one).
 ModalBody read_body_file_cached(const std::string& path);
 
 /// derive(read_body_file_cached(path)), made once per file state and `recipe`
