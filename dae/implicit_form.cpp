@@ -4,6 +4,7 @@
 #include <limits>
 
 #include "dae/consistent.h"
+#include "dae/fixed_order_lu.h"
 
 namespace evas::dae {
 
@@ -31,7 +32,19 @@ ImplicitForm::ImplicitForm(Problem& p, const std::string& formulation)
     p.mass(0.0, q.data(), Mq_);
     M0_ = Mat(Mq_);
   }
-  M0inv_ = M0_.inverse();
+  // M0^-1 column by column in a fixed order (dae/fixed_order_lu.h): Eigen's
+  // inverse and products differ in the last bits between builds
+  M0inv_.resize(n_, n_);
+  dae::FixedOrderLU lu;
+  if (!lu.factor(M0_))
+    throw InputError("the first-order form: the constant mass matrix is singular");
+  Vec e = Vec::Zero(n_), col;
+  for (int j = 0; j < n_; ++j) {
+    e[j] = 1.0;
+    lu.solve(e, col);
+    M0inv_.col(j) = col;
+    e[j] = 0.0;
+  }
   fq_.setZero(n_);
   a_.setZero(n_);
   g_.setZero(m_);
@@ -104,7 +117,8 @@ void ImplicitForm::rhs_reduced(double t, const double* y, double* f) {
   // index-1 reads a = M^-1 (-f - G^T lambda): dyn with the multipliers' term
   if (index_ == 1) {
     p_.constraint_jacobian(t, q, G_);
-    a_ = M0inv_ * (dyn - G_.transpose() * lv);
+    const Vec rhs_a = dyn - G_.transpose() * lv;
+    dae::mat_vec_fixed_order(M0inv_, rhs_a, a_);
   }
   constraint_rows(t, q, v, lv, a_, dyn, f + 2 * n_);
 }

@@ -1,13 +1,14 @@
 #include "integrators/implicit_radau.h"
 
-#include <Eigen/LU>
 #include <algorithm>
 #include <array>
 #include <chrono>
 #include <cmath>
 #include <complex>
 #include <limits>
+#include <stdexcept>
 
+#include "dae/fixed_order_lu.h"
 #include "integrators/common.h"
 #include "integrators/radau.h"
 
@@ -17,10 +18,47 @@ namespace {
 
 using cplx = std::complex<double>;
 
+// The transformation of the Newton iteration, V and V^-1 (D = V diag(g, l,
+// conj(l)) V^-1), as the portable build computes them in radau_iia5_tableau():
+// Eigen's 3 x 3 eigen-decomposition and inverse round differently in the
+// x86-64-v3 build (last bits of V(1..2, 0) and V^-1), and Radau's digits
+// followed (docs/problems.md, "Reproducible digits"). Checked against the
+// derived values, so a change of the tableau's definition is noticed.
+RadauTableau fixed_tableau() {
+  RadauTableau T = radau_iia5_tableau();
+  const double v[3][3][2] = {{{0x1.75b01984e65dap-4, 0x0p+0},
+                              {0x1.901a8baf3f557p-5, 0x1.f356e504b1304p-4},
+                              {0x1.901a8baf3f557p-5, -0x1.f356e504b1304p-4}},
+                             {{0x1.ef09cfbeab854p-3, 0x0p+0},
+                              {-0x1.7fd3ae831dfc4p-2, -0x1.f9a62816c19d1p-4},
+                              {-0x1.7fd3ae831dfc4p-2, 0x1.f9a62816c19d1p-4}},
+                             {{0x1.ee9dde0d6255dp-1, 0x0p+0},
+                              {-0x1.3dffc4a312907p-3, -0x1.cac7068a3b7dep-1},
+                              {-0x1.3dffc4a312907p-3, 0x1.cac7068a3b7dep-1}}};
+  const double vinv[3][3][2] = {{{0x1.14d64d09039e9p+2, 0x0p+0},
+                                 {0x1.5b570c758198bp-2, 0x0p+0},
+                                 {0x1.1562f2bdebf51p-1, 0x0p+0}},
+                                {{0x1.5454293330d61p-1, -0x1.1bb8439bc94c7p+1},
+                                 {-0x1.5ccfec95e1e51p+0, -0x1.ad03a45db5de4p-2},
+                                 {0x1.1cd4409880771p-2, 0x1.41b2b9f60787ap-2}},
+                                {{0x1.5454293330d61p-1, 0x1.1bb8439bc94c7p+1},
+                                 {-0x1.5ccfec95e1e51p+0, 0x1.ad03a45db5de4p-2},
+                                 {0x1.1cd4409880771p-2, -0x1.41b2b9f60787ap-2}}};
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      const cplx a(v[i][j][0], v[i][j][1]), b(vinv[i][j][0], vinv[i][j][1]);
+      if (std::abs(a - T.V(i, j)) > 1e-14 || std::abs(b - T.Vinv(i, j)) > 1e-14)
+        throw std::logic_error("radau: the fixed transformation is not the tableau's");
+      T.V(i, j) = a;
+      T.Vinv(i, j) = b;
+    }
+  return T;
+}
+
 class ImplicitRadau {
  public:
   ImplicitRadau(ImplicitDae& p, const IntegratorSettings& s)
-      : p_(p), s_(s), T_(radau_iia5_tableau()), n_(p.size()), M_(p.mass()) {
+      : p_(p), s_(s), T_(fixed_tableau()), n_(p.size()), M_(p.mass()) {
     J_.setZero(n_, n_);
     for (auto* v : {&w_, &f0_, &tmp_, &err_, &rhs_r_, &x_r_}) v->setZero(n_);
     for (int i = 0; i < 3; ++i) {
@@ -97,7 +135,7 @@ class ImplicitRadau {
           }
           newton_update(h);
           double dn = 0.0;
-          for (int i = 0; i < 3; ++i) dn += (dZ_[i].cwiseProduct(w_)).squaredNorm();
+          for (int i = 0; i < 3; ++i) dn += dae::weighted_squared_norm(dZ_[i], w_);
           dn = std::sqrt(dn / (3.0 * n_));
           ++stats_.nonlinear_iterations;
           if (!std::isfinite(dn)) break;
@@ -222,16 +260,12 @@ class ImplicitRadau {
   void factorize(double h) {
     ++stats_.linear_setups;
     const double gh = T_.g / h;
-    lu_r_.compute(gh * M_ - J_);
+    const bool real_ok = lu_r_.factor(gh * M_ - J_);
     const cplx lh = T_.l / h;
     lu_c_.re() = lh.real() * M_ - J_;
     lu_c_.im() = lh.imag() * M_;
     if (!lu_c_.factor()) throw RunError("the complex iteration matrix is singular");
-    const Vec pivots = lu_r_.matrixLU().diagonal();
-    for (int i = 0; i < n_; ++i)
-      if (!(std::abs(pivots(i)) > 0.0) || !std::isfinite(pivots(i)))
-        throw RunError("the real iteration matrix (g/h M - J) is singular (pivot " +
-                       std::to_string(i) + ")");
+    if (!real_ok) throw RunError("the real iteration matrix (g/h M - J) is singular");
   }
 
   // Lagrange weight of node m (0: c1, 1: c2, 2: 1) at s over the nodes 0, c1, c2, 1
@@ -262,7 +296,7 @@ class ImplicitRadau {
   void newton_update(double h) {
     // R_i = (1/h) sum_j D_ij M Z_j - F_i; its transforms by Vinv: real row 0, complex row 1
     std::array<Vec, 3> MZ;
-    for (int j = 0; j < 3; ++j) MZ[j] = M_ * Z_[j];
+    for (int j = 0; j < 3; ++j) dae::mat_vec_fixed_order(M_, Z_[j], MZ[j]);
     std::array<Vec, 3> R;
     for (int i = 0; i < 3; ++i) {
       R[i] = -F_[i];
@@ -276,7 +310,7 @@ class ImplicitRadau {
       r2r_ -= T_.Vinv(1, j).real() * R[j];
       r2i_ -= T_.Vinv(1, j).imag() * R[j];
     }
-    x_r_ = lu_r_.solve(rhs_r_);
+    lu_r_.solve(rhs_r_, x_r_);
     x2r_ = r2r_;
     x2i_ = r2i_;
     lu_c_.solve(x2r_, x2i_);
@@ -290,9 +324,11 @@ class ImplicitRadau {
     // f0 + (g/h) sum_j e_j M Z_j, filtered by (g/h M - J)^-1
     Vec sumz = Vec::Zero(n_);
     for (int j = 0; j < 3; ++j) sumz += T_.e[static_cast<std::size_t>(j)] * Z_[j];
-    const Vec mz = (T_.g / h) * (M_ * sumz);
-    err_ = lu_r_.solve(f0_ + mz);
-    double e = std::sqrt((err_.cwiseProduct(w_)).squaredNorm() / n_);
+    Vec msum;
+    dae::mat_vec_fixed_order(M_, sumz, msum);
+    const Vec mz = (T_.g / h) * msum;
+    lu_r_.solve(f0_ + mz, err_);
+    double e = std::sqrt(dae::weighted_squared_norm(err_, w_) / n_);
     if (e >= 1.0 && again) {
       tmp_ = y_ + err_;
       Vec f1(n_);
@@ -302,8 +338,8 @@ class ImplicitRadau {
         ++stats_.refused_states;
         return e;  // the first estimate stands
       }
-      err_ = lu_r_.solve(f1 + mz);
-      e = std::sqrt((err_.cwiseProduct(w_)).squaredNorm() / n_);
+      lu_r_.solve(f1 + mz, err_);
+      e = std::sqrt(dae::weighted_squared_norm(err_, w_) / n_);
     }
     return std::max(e, 1e-10);
   }
@@ -318,7 +354,9 @@ class ImplicitRadau {
   std::array<Vec, 3> Z_, Zprev_, F_, dZ_;
   std::vector<int> idx_;
 
-  Eigen::PartialPivLU<Mat> lu_r_;
+  // Fixed-order kernels (dae/fixed_order_lu.h) so the portable and the
+  // x86-64-v3 build give the same digits; SplitComplexLU is plain loops already.
+  dae::FixedOrderLU lu_r_;
   SplitComplexLU lu_c_;
   double fnewt_ = 0.03, rtol_ = 0.0, atol_ = 0.0;
   bool fixed_ = false;  // step_control=fixed: every step accepted, h kept
