@@ -162,6 +162,32 @@ inline UnitCosts unit_costs(const study::SceneSource& src) {
   return u;
 }
 
+// The ten main-bearing load channels (main*.fx, main*.fy) of a scene.
+inline std::vector<int> bearing_channels(const study::SceneInfo& info) {
+  std::vector<int> channels;
+  for (std::size_t i = 0; i < info.channels.size(); ++i) {
+    const std::string& nm = info.channels[i].name;
+    if (nm.rfind("main", 0) == 0 &&
+        (nm.size() > 3 && (nm.substr(nm.size() - 3) == ".fx" || nm.substr(nm.size() - 3) == ".fy")))
+      channels.push_back(static_cast<int>(i));
+  }
+  return channels;
+}
+
+// The reference of the engine tables: IDA with KLU at rtol 1e-9, atol 1e-12.
+inline study::RunData reference_run(const study::SceneSource& src, const study::SceneInfo& info,
+                                    const std::vector<int>& channels, const std::string& label) {
+  IntegratorSettings s = info.integrator;
+  s.name = "ida";
+  s.linear_solver = "klu";
+  s.rtol = 1e-9;
+  s.atol = 1e-12;
+  study::RunData ref = study::run_case(src, s, channels);
+  if (ref.status != study::CaseStatus::completed)
+    throw RunError(label + " reference: " + ref.message);
+  return ref;
+}
+
 inline double bearing_error(const study::RunData& d, const study::RunData& ref, double t_end) {
   double diff = 0.0, peak = 0.0;
   const long rows = std::min(d.rows(), ref.rows());
@@ -243,21 +269,9 @@ inline std::string engine_table(const std::string& path) {
            "|---|---:|---:|---:|---:|---:|---:|---:|---:|\n";
   for (const EngineCase& c : engine_cases(path)) {
     const study::SceneInfo info = study::probe_scene(c.src);
-    std::vector<int> channels;
-    for (std::size_t i = 0; i < info.channels.size(); ++i) {
-      const std::string& nm = info.channels[i].name;
-      if (nm.rfind("main", 0) == 0 && (nm.size() > 3 && (nm.substr(nm.size() - 3) == ".fx" ||
-                                                         nm.substr(nm.size() - 3) == ".fy")))
-        channels.push_back(static_cast<int>(i));
-    }
+    const std::vector<int> channels = bearing_channels(info);
+    const study::RunData ref = reference_run(c.src, info, channels, c.label);
     IntegratorSettings s = info.integrator;
-    s.name = "ida";
-    s.linear_solver = "klu";
-    s.rtol = 1e-9;
-    s.atol = 1e-12;
-    const study::RunData ref = study::run_case(c.src, s, channels);
-    if (ref.status != study::CaseStatus::completed)
-      throw RunError(c.label + " reference: " + ref.message);
     std::cerr << c.label << " reference done (" << ref.stats.steps << " steps, " << ref.wall
               << " s)\n";
     const UnitCosts u = unit_costs(c.src);

@@ -20,6 +20,7 @@
 #include "../tests/random_body.h"
 #include "bench_baseline.h"
 #include "bench_engine.h"
+#include "bench_quasi_static.h"
 #include "bench_scaling.h"
 #include "elements/spring_damper.h"
 #include "integrators/integrator.h"
@@ -197,6 +198,11 @@ std::string engine_size(const std::string& path) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  // `evas_bench --quasi-static ENGINE`: that section alone, to stdout
+  if (argc > 1 && std::string(argv[1]) == "--quasi-static") {
+    std::cout << bench::quasi_static_table(argc > 2 ? argv[2] : "validation/engine/engine.yaml");
+    return 0;
+  }
   const std::string out = argc > 1 ? argv[1] : "";
   const std::string engine = argc > 2 ? argv[2] : "validation/engine/engine.yaml";
   // the evas of 2026-11-24 and its engine scene (bench/baseline.sh)
@@ -268,7 +274,18 @@ int main(int argc, char** argv) {
       << "IDA with the second-order solver, rtol 1e-5, atol 1e-9, the first 0.06 s of Case 1; "
          "wall time of init + integrate (minimum of 2 runs) per step; peak memory of the same "
          "run as an `evas run` process (its maximum resident set, outputs included).\n\n"
-      << bench::scaling_table(engine, EVAS_PROGRAM) << "\n";
+      << bench::scaling_table(engine, EVAS_PROGRAM) << "\n"
+      << "## Quasi-static modes: the model's error and the cost\n\n"
+      << "Case 1 with the elastic modes of both bodies above a threshold quasi-static "
+         "(`modes: {quasi_static_above: F}`, docs/theory.md section 11): their inertia left "
+         "out, their static compliance kept. Errors per channel (as above) against the full, "
+         "all-dynamic model's reference (IDA, KLU, rtol 1e-9, atol 1e-12): the tight run "
+         "(IDA, rtol 1e-8) is the model's error alone, the others add their integration "
+         "error. Generalized-alpha with the increment test at rtol 3e-5, atol 1e-9, a failed "
+         "step taken as sub-steps; IDA with the second-order solver, atol = rtol / 1e4. Wall "
+         "time of init + integrate, minimum of 3 runs (the tight run once). Conclusion in "
+         "docs/engine-speed.md (\"Quasi-static modes\").\n\n"
+      << bench::quasi_static_table(engine) << "\n";
   std::cout << doc.str();
   if (!out.empty()) {
     std::ofstream f(out);

@@ -37,6 +37,7 @@ class PenaltyProblem final : public Problem {
   bool at_stop(double t, double* q, double* v) override { return base_.at_stop(t, q, v); }
   void body_operator(double t, SpMat& KB, SpMat& CB) override;
   bool has_mass() const override { return base_.has_mass(); }
+  const std::vector<int>& quasi_static() const override { return base_.quasi_static(); }
   void mass(double t, const double* q, SpMat& M) override { base_.mass(t, q, M); }
   const SpMat& mass_pattern() const override { return base_.mass_pattern(); }
   std::string describe_state(double t, const double* q, const double* v) const override {

@@ -65,6 +65,7 @@ class CvodeIntegrator final : public Integrator {
       throw InputError(
           "cvode: the problem has a mass matrix (M != I), which cvode's explicit form "
           "v' = -f cannot take; use ida");
+    require_quasi_static_support(*this, *model);       // (its explicit form has no place for them)
     form_ = std::make_unique<FirstOrderForm>(*model);  // refuses algebraic internal states
     J_ = form_->rhs_pattern();
 

@@ -48,6 +48,7 @@
 #include "dae/constraint_stats.h"
 #include "dae/penalty.h"
 #include "integrators/common.h"
+#include "solver/quasi_static.h"
 
 namespace evas {
 
@@ -95,6 +96,8 @@ class FixedStepIntegrator : public Integrator {
     stats_ = IntegratorStats{};
     q_ = q0;
     v_ = v0;
+    require_quasi_static_support(*this, *p_);
+    settle_quasi_static(*p_, t0, q_, v_);  // (nothing without quasi-static modes)
     a_.resize(n_);
     f_.resize(n_);
     q1_.resize(n_);
@@ -221,8 +224,12 @@ class FixedStepIntegrator : public Integrator {
   /// Called after a step is accepted (the swap of q1_.. into q_.. done).
   virtual void accepted() {}
   /// Sets a_ (and whatever else the method carries) at the start state
-  /// (t_, q_, v_, f_); default a_ = -f.
-  virtual void start_acceleration() { a_ = -f_; }
+  /// (t_, q_, v_, f_); default a_ = -f, and for quasi-static coordinates the
+  /// accelerations that keep their rows f_i = 0 along the motion.
+  virtual void start_acceleration() {
+    a_ = -f_;
+    quasi_static_accelerations(*p_, t_, q_, v_, a_);
+  }
 
   /// Current state (t_, q_, v_) with f_ = f(t, q, v) and start_acceleration().
   void start(double t) {

@@ -12,6 +12,7 @@ void integrate(Integrator& integ, Problem& p, double t0, const std::vector<doubl
     throw InputError("integrator '" + integ.name() +
                      "' does not integrate element internal states (" + p.internal_name(0) + ", " +
                      std::to_string(p.internal_count()) + " in all): use ida or cvode");
+  require_quasi_static_support(integ, p);
   Vec q(p.size()), v(p.size());
   double t = t0;
   std::size_t k = 0;

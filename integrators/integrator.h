@@ -102,6 +102,10 @@ class Integrator {
   /// internal_count() > 0): it sets the problem's z before every evaluation
   /// and after advance(). integrate() refuses such problems otherwise.
   virtual bool takes_internal_states() const { return false; }
+  /// True if the integrator solves quasi-static coordinates (Problem::
+  /// quasi_static(): rows without inertia, f_i = 0). integrate() refuses
+  /// such problems otherwise.
+  virtual bool takes_quasi_static() const { return false; }
   /// Prepare to integrate from t0 with q0, v0 (size n each).
   virtual void init(Problem& p, double t0, const Vec& q0, const Vec& v0,
                     const IntegratorSettings& s) = 0;
@@ -150,6 +154,9 @@ struct IntegratorCapabilities {
 std::vector<std::string> integrator_names();
 /// The built-in five alone (no plug-in).
 std::vector<std::string> builtin_integrator_names();
+/// Throws InputError when `p` has quasi-static coordinates and `integ` does
+/// not take them (Integrator::takes_quasi_static).
+void require_quasi_static_support(const Integrator& integ, const Problem& p);
 /// Makes a new integrator (one per run).
 using IntegratorFactory = std::function<std::unique_ptr<Integrator>()>;
 /// Adds an integrator under `name` (1 to 64 of a-z, 0-9, '-', '_', '.'), e.g.

@@ -6,6 +6,8 @@
 #include <cmath>
 #include <limits>
 
+#include "solver/quasi_static.h"
+
 namespace evas {
 
 IntegratorCapabilities newmark_capabilities() {
@@ -41,6 +43,8 @@ void NewmarkIntegrator::setup() {
   K_.makeCompressed();
   C_ = K_;
   so_ = std::make_unique<SecondOrderSolver>(K_);
+  qs_ = p_->quasi_static();
+  if (!qs_.empty()) so_->set_mass_diagonal(mass_diagonal(*p_));
   combined_ = (it_ == Iteration::effective_mass || it_ == Iteration::newton) &&
               s_.step_control != StepControl::adaptive;
   so_->C().coeffs().setZero();  // (factorize_combination's S = K + 0 C)
@@ -144,6 +148,11 @@ void NewmarkIntegrator::solve_update(double t1, double h, double am, bool& refre
         so_->solve_matrix(R_.data(), delta_.data());
         ++stats_.linear_solves;
       } else {
+        if (!qs_.empty())
+          throw InputError(name() + ": iteration " + to_text(it_) +
+                           " without a body operator cannot solve quasi-static modes (" +
+                           p_->describe_coordinate(qs_.front()) +
+                           "); use iteration=effective-mass or newton");
         delta_ = R_ / (1.0 - am);
       }
       break;
@@ -218,6 +227,7 @@ NewmarkIntegrator::Verdict NewmarkIntegrator::increment_test(IterationState& st,
   if (converged) {
     kinematics(h, a);
     f1_ = -((1.0 - am) * a + am * a_ + af * f_) / (1.0 - af);
+    for (int i : qs_) f1_[i] = 0.0;  // (their rows of R = 0)
     stats_.max_step_iterations = std::max<long>(stats_.max_step_iterations, k + 1);
     return Verdict::converged;
   }
@@ -266,6 +276,7 @@ bool NewmarkIntegrator::iterate(double t, double h) {
     }
     ++stats_.residual_evals;
     R_ = (1.0 - am) * a + am * a_ + (1.0 - af) * f1_ + af * f_;
+    for (int i : qs_) R_[i] = (1.0 - af) * f1_[i];  // f_i = 0 at t_{n+1}
     const double rn = R_.norm();
     rnorms_.push_back(rn);
     if (!std::isfinite(rn)) return fail("the residual is not finite", t1, h, k);

@@ -34,6 +34,13 @@
 //                   adaptive steps).
 // Predictor: a extrapolated linearly from a_{n-1}, a_n (a_n on the first step
 // after a start, or when an element refuses the extrapolated state).
+// Quasi-static coordinates (Problem::quasi_static; mass diagonal m): their
+// rows of R are (1 - alpha_f) f_i(t_{n+1}, q_{n+1}, v_{n+1}), so the equation
+// f_i = 0 holds at the step's end, not alpha-weighted with f_n (which would
+// carry a start's residual along); S has (1 - alpha_m) m in place of
+// (1 - alpha_m) I. Their accelerations follow from the Newmark relations.
+// The fixed point without a body operator (R scaled by the unit mass) cannot
+// take them (refused).
 // Convergence:
 //   balance (linear-acceleration): eps = ||R||_2 / max(||(1 - alpha_m) a + alpha_m a_n||_2,
 //     ||a_n||_2, atol) <= balance_tol, checked on the iterate before an update, so
@@ -95,6 +102,7 @@ class NewmarkIntegrator : public FixedStepIntegrator {
   /// c_v of the local velocity error c_v h^3 q'''' (see above): kappa +
   /// gamma (1/2 + alpha_m - alpha_f) - 1/6; 1/12 for linear acceleration.
   static double velocity_error_coefficient(const Parameters& par);
+  bool takes_quasi_static() const override { return true; }
 
  protected:
   /// The method's parameters from the settings (s_); throws InputError.
@@ -188,6 +196,7 @@ class NewmarkIntegrator : public FixedStepIntegrator {
   double h_factor_ = 0.0;
   Vec f_prev_;  // f one step before the current state (valid with has_history())
   Vec R_, delta_;
+  std::vector<int> qs_;          // quasi-static coordinates (Problem::quasi_static)
   Vec* shifted_ = nullptr;       // what the last shifted_step() moved (and kept) ...
   Vec* shifted_save_ = nullptr;  // ... and its value before
   Vec a_save_;                   // a_ before step() shifted it (given back if the step fails)

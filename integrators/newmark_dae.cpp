@@ -26,6 +26,12 @@ void NewmarkDaeIntegrator::setup() {
     return;
   }
   par_ = parameters();
+  if (!p_->quasi_static().empty())
+    throw InputError(name() + ": quasi-static modes (" +
+                     p_->describe_coordinate(p_->quasi_static().front()) + ", " +
+                     std::to_string(p_->quasi_static().size()) +
+                     " in all) are not yet combined with joints as constraints or a mass "
+                     "matrix (use formulation=penalty)");
   if (s_.iteration != Iteration::method_default && s_.iteration != Iteration::newton)
     throw InputError(name() + ": iteration '" + to_text(s_.iteration) +
                      "' does not apply to constrained problems (modified Newton on q and "

@@ -108,3 +108,16 @@ std::unique_ptr<Integrator> make_integrator(const std::string& name) {
 }
 
 }  // namespace evas
+
+namespace evas {
+
+void require_quasi_static_support(const Integrator& integ, const Problem& p) {
+  if (p.quasi_static().empty() || integ.takes_quasi_static()) return;
+  throw InputError("integrator '" + integ.name() + "' does not solve quasi-static modes (" +
+                   p.describe_coordinate(p.quasi_static().front()) + ", " +
+                   std::to_string(p.quasi_static().size()) +
+                   " in all: rows without inertia); use ida or generalized-alpha, or keep the "
+                   "modes dynamic");
+}
+
+}  // namespace evas

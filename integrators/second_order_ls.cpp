@@ -78,6 +78,12 @@ SecondOrderSolver::SecondOrderSolver(const SpMat& pattern)
 
 SecondOrderSolver::~SecondOrderSolver() = default;
 
+void SecondOrderSolver::set_mass_diagonal(const Vec& m) {
+  if (m.size() != 0 && m.size() != n_)
+    throw std::logic_error("second-order solver: mass diagonal of the wrong size");
+  m_ = m;
+}
+
 void SecondOrderSolver::set_coefficients(double a, double b, double c, double d, double e) {
   a_ = a;
   b_ = b;
@@ -113,7 +119,10 @@ bool SecondOrderSolver::factor_matrix(double kk, double cc, double ii) {
       double* s = S_.col(col).data();
       for (int k = outer[col]; k < outer[col + 1]; ++k) s[inner[k]] += kk * kv[k] + cc * cv[k];
     }
-    S_.diagonal().array() += ii;
+    if (m_.size() == 0)
+      S_.diagonal().array() += ii;
+    else
+      S_.diagonal() += ii * m_;
     // a matrix like the last one, which served more solves than the inverse
     // costs, is inverted at once, without the LU (see solve_matrix); singular
     // when a pivot vanishes against the largest (no allocation, unlike rcond())
@@ -144,7 +153,8 @@ bool SecondOrderSolver::factor_matrix(double kk, double cc, double ii) {
       sv[p] += kk * kv[k] + cc * cv[k];
     }
   }
-  for (int i = 0; i < n_; ++i) sv[diag_[static_cast<std::size_t>(i)]] += ii;
+  for (int i = 0; i < n_; ++i)
+    sv[diag_[static_cast<std::size_t>(i)]] += m_.size() == 0 ? ii : ii * m_[i];
   // refactorize with the old pivots (allocates nothing); a full factorization
   // (allocates) the first time and when the pivots have gone bad
   constexpr double kKluRcond = 1e-12;
@@ -211,7 +221,10 @@ void SecondOrderSolver::solve(const double* r, double* x) {
     rhs_.noalias() = Cd_ * rq;
   else
     rhs_.noalias() = C_ * rq;
-  rhs_ = fb_ * rv - fd_ * rq - fe_ * rhs_;
+  if (m_.size() == 0)
+    rhs_ = fb_ * rv - fd_ * rq - fe_ * rhs_;
+  else
+    rhs_ = fb_ * rv - fd_ * m_.cwiseProduct(rq) - fe_ * rhs_;
   solve_matrix(rhs_.data(), rhs_.data());  // rhs_ now holds x_q
   Eigen::Map<Vec> xq(x, n_), xv(x + n_, n_);
   xv = (rq - fa_ * rhs_) / fb_;  // reads r_q before x_q overwrites it (r may alias x)

@@ -44,6 +44,10 @@ class SecondOrderSolver {
   SpMat& K() { return K_; }
   SpMat& C() { return C_; }
 
+  /// The mass diagonal m replacing I in the velocity block (d m + e C) and in
+  /// factor_matrix's ii term: 0 for quasi-static coordinates
+  /// (solver/quasi_static.h). Empty (the default): the identity.
+  void set_mass_diagonal(const Vec& m);
   /// Sets the coefficients of A for the next factor().
   void set_coefficients(double a, double b, double c, double d, double e);
   /// Forms the reduced matrix of A from the current K, C and coefficients and
@@ -53,7 +57,8 @@ class SecondOrderSolver {
   /// may alias.
   void solve(const double* r, double* x);
 
-  /// The n x n matrix alone: S = kk K + cc C + ii I from the current K and C,
+  /// The n x n matrix alone: S = kk K + cc C + ii I (ii diag(m) with a mass
+  /// diagonal) from the current K and C,
   /// factorized (false when singular); the Newmark family's effective
   /// stiffness (generalized-alpha, linear acceleration).
   bool factor_matrix(double kk, double cc, double ii);
@@ -64,6 +69,7 @@ class SecondOrderSolver {
   int n_;
   bool dense_;
   SpMat K_, C_;
+  Vec m_;                                         // mass diagonal (empty: the identity)
   double a_ = 0, b_ = 0, c_ = 0, d_ = 0, e_ = 0;  // coefficients of the next factor()
   double fa_ = 0, fb_ = 0, fd_ = 0, fe_ = 0;      // ... of the factorization held
   // dense path: S_ factorized in place (LU with partial pivoting); Sinv_ its

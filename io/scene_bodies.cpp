@@ -31,7 +31,8 @@ void SceneReader::read_body(const Node& b, std::size_t i, Model& model) {
   if (bool(file) == bool(gen)) fail(b, item, "give exactly one of 'file' and 'generate'");
   const Node zeta_node = b["damping_ratio"];
   const double zeta = zeta_node ? number_in(zeta_node, item, "damping_ratio", 0.0, 10.0) : 0.0;
-  if (modes) check_keys(modes, item + " modes", {"rigid", "elastic", "max_frequency"});
+  if (modes)
+    check_keys(modes, item + " modes", {"rigid", "elastic", "max_frequency", "quasi_static_above"});
 
   std::shared_ptr<const ModalBody> data;
   const Node tol_node = b["check_tolerance"];
@@ -97,6 +98,8 @@ void SceneReader::read_body(const Node& b, std::size_t i, Model& model) {
   } catch (const InputError& e) {
     rethrow(b, item, e);
   }
+  if (modes && modes["quasi_static_above"])
+    set_quasi_static(modes["quasi_static_above"], item + " modes", model.bodies()[index]);
   if (const Node init = b["initial"]) {
     const std::string it = item + " initial";
     check_keys(init, it, {"q", "v"});
@@ -111,6 +114,27 @@ void SceneReader::read_body(const Node& b, std::size_t i, Model& model) {
       body.v0 = Eigen::Map<const Vec>(v.data(), body.n());
     }
   }
+}
+
+void SceneReader::set_quasi_static(const Node& node, const std::string& mi, Body& body) {
+  const double above = number_in(node, mi, "quasi_static_above", 0.0, 1e300, true);
+  const ModalBody& d = *body.data;
+  body.quasi_static.clear();
+  for (int k = 0; k < d.num_modes(); ++k) {
+    if (d.kinds[k] != ModeKind::Elastic) continue;
+    const double f = std::sqrt(std::max(0.0, d.eigenvalues[k])) / (2.0 * M_PI);
+    if (!(f > above)) continue;
+    if (!(d.damping[k] > 0.0))
+      fail(node, mi,
+           "mode " + std::to_string(k) + " (" + number_text(f) +
+               " Hz) would be quasi-static but has no modal damping: give the body a "
+               "damping_ratio > 0 (without damping a quasi-static mode's velocity is of index 2)");
+    body.quasi_static.push_back(k);
+  }
+  if (body.quasi_static.empty())
+    warnings_.push_back(file_ + ":" + std::to_string(node.Mark().line + 1) + ": " + mi +
+                        ": no elastic mode above quasi_static_above = " + number_text(above) +
+                        " Hz; every mode stays dynamic");
 }
 
 std::shared_ptr<ModalBody> SceneReader::generate_body(const Node& g, const Node& modes,

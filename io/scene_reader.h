@@ -199,6 +199,9 @@ class SceneReader {
   std::shared_ptr<ModalBody> generate_body(const Node& g, const Node& modes,
                                            const std::string& name, const std::string& item,
                                            double zeta, bool has_zeta);
+  /// Body::quasi_static from `modes: {quasi_static_above: HZ}`: the elastic
+  /// modes above HZ (each must be damped).
+  void set_quasi_static(const Node& node, const std::string& mi, Body& body);
   ModalBody truncate(ModalBody body, const Node& modes, const std::string& item) const;
   Lof read_lof(const Node& l, const std::string& item) const;
   void read_marker(const Node& m, std::size_t i, Model& model);

@@ -24,6 +24,10 @@ struct Body {
   Vec q0, v0;      ///< initial modal coordinates and velocities
   /// Index of the explicit rigid basis modes (tx, ty, tz, r1, r2, r3) or -1 where absent.
   std::array<int, 6> rigid = {-1, -1, -1, -1, -1, -1};
+  /// Modes (0 .. n-1, ascending) taken as quasi-static: no inertia, their
+  /// equation f_k = 0 (Problem::quasi_static; the scene's
+  /// `modes: {quasi_static_above: HZ}`).
+  std::vector<int> quasi_static;
 
   int n() const { return data->num_modes(); }
 };

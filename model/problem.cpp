@@ -54,6 +54,11 @@ void Problem::internal_patterns(SpMat& Fz, SpMat& Hq, SpMat& Hv, SpMat& Hz) cons
 }
 std::string Problem::internal_name(int i) const { return "internal state " + std::to_string(i); }
 
+const std::vector<int>& Problem::quasi_static() const {
+  static const std::vector<int> none;
+  return none;
+}
+
 std::string Problem::describe_coordinate(int i) const { return "coordinate " + std::to_string(i); }
 
 std::string Problem::describe_state(double t, const double* q, const double* v) const {

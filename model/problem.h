@@ -23,6 +23,7 @@
 
 #include <limits>
 #include <string>
+#include <vector>
 
 #include "model/types.h"
 
@@ -124,6 +125,15 @@ class Problem {
   virtual void internal_patterns(SpMat& Fz, SpMat& Hq, SpMat& Hv, SpMat& Hz) const;
   /// Name of state i for messages, e.g. "element 'mount1' z_x".
   virtual std::string internal_name(int i) const;
+
+  // ---- Coordinates without inertia (defaults: none) ----
+  /// Coordinates whose equation has no acceleration term: f_i(t, q, v) = 0 in
+  /// place of qdd_i + f_i = 0, i.e. the mass matrix diag(m) with m_i = 0 for
+  /// them and 1 for the others (quasi-static modes, docs/theory.md section 11).
+  /// Sorted, each once. An integrator that takes them
+  /// (Integrator::takes_quasi_static) solves those rows as algebraic
+  /// equations; integrate() refuses the others.
+  virtual const std::vector<int>& quasi_static() const;
 
   /// Human-readable description of where a failure happened (element, body, state).
   virtual std::string describe_state(double t, const double* q, const double* v) const;

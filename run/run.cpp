@@ -8,6 +8,7 @@
 
 #include "dae/consistent.h"
 #include "run/stop.h"
+#include "solver/quasi_static.h"
 
 namespace evas::run {
 
@@ -62,6 +63,10 @@ void start(Problem& p, Integrator& integ, const IntegratorSettings& s, double t0
     st.lambda = cs.lambda;
   }
   start_internal_states(p, t0, st.q, st.v);
+  // the quasi-static modes at their static deflection (also done by the
+  // integrators that take them; here so that the first output row has it)
+  require_quasi_static_support(integ, p);
+  settle_quasi_static(p, t0, st.q, st.v);
   integ.init(p, t0, st.q, st.v, s);
   if (Vec lam; p.constraint_count() > 0 && integ.multipliers(lam)) {
     st.lambda = lam;

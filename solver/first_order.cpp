@@ -14,6 +14,7 @@
 #include <stdexcept>
 
 #include "dae/internal_blocks.h"
+#include "solver/quasi_static.h"
 
 namespace evas {
 
@@ -25,6 +26,8 @@ FirstOrderForm::FirstOrderForm(Problem& p) : p_(p), n_(p.size()), nz_(p.internal
       throw InputError(
           p.internal_name(i) +
           ": this integrator takes differential states only, not algebraic ones (use ida)");
+  m_ = mass_diagonal(p);
+  unit_mass_ = p.quasi_static().empty();
   K_ = p.jacobian_pattern();
   K_.makeCompressed();
   if (K_.rows() != n_ || K_.cols() != n_)
@@ -91,7 +94,7 @@ void FirstOrderForm::residual(double t, const double* y, const double* yd, doubl
   p_.force(t, q, v, F + n_);
   for (int i = 0; i < n_; ++i) {
     F[i] = yd[i] - v[i];
-    F[n_ + i] += yd[n_ + i];
+    F[n_ + i] += m_[i] * yd[n_ + i];
   }
   if (nz_ == 0) return;
   double* Fz = F + 2 * n_;
@@ -113,7 +116,7 @@ void FirstOrderForm::residual_jacobian(double t, const double* y, double cj, SpM
   }
   for (std::size_t i = 0; i < res_I_.size(); ++i) {
     val[res_cjq_[i]] += cj;
-    val[res_cjv_[i]] += cj;
+    val[res_cjv_[i]] += cj * m_[static_cast<Eigen::Index>(i)];
     val[res_I_[i]] -= 1.0;
   }
   if (nz_ == 0) return;
@@ -122,6 +125,8 @@ void FirstOrderForm::residual_jacobian(double t, const double* y, double cj, SpM
 }
 
 void FirstOrderForm::rhs(double t, const double* y, double* yd) {
+  if (!unit_mass_)
+    throw std::logic_error("first_order: rhs() of a problem with quasi-static coordinates");
   const double* q = y;
   const double* v = y + n_;
   if (nz_ > 0) p_.set_internal(y + 2 * n_);
@@ -134,6 +139,9 @@ void FirstOrderForm::rhs(double t, const double* y, double* yd) {
 }
 
 void FirstOrderForm::rhs_jacobian(double t, const double* y, SpMat& J) {
+  if (!unit_mass_)
+    throw std::logic_error(
+        "first_order: rhs_jacobian() of a problem with quasi-static coordinates");
   if (nz_ > 0) p_.set_internal(y + 2 * n_);
   p_.force_jacobian(t, y, y + n_, K_, C_);
   double* val = J.valuePtr();

@@ -11,6 +11,11 @@
 // y = [q; v; z], residual rows z' - h(t, q, v, z), rhs rows h, Jacobian blocks
 // Fz = df/dz in (v, z), Hq, Hv, Hz in (z, q), (z, v), (z, z), with signs as for
 // K and C. The problem's current z is set from y before every evaluation.
+//
+// Quasi-static coordinates (Problem::quasi_static) have no yd_v term: their
+// rows are f_i = 0 and their (v, v) entry is C_ii alone (the mass diagonal m
+// of solver/quasi_static.h). The implicit residual takes them; the explicit
+// form cannot (rhs() and rhs_jacobian() throw std::logic_error).
 #pragma once
 
 #include <vector>
@@ -41,6 +46,8 @@ class FirstOrderForm {
   Problem& p_;
   int n_, nz_;
   SpMat K_, C_;
+  Vec m_;  // diag(M): 0 for quasi-static coordinates, else 1
+  bool unit_mass_ = true;
   dae::InternalBlocks zb_;  // internal states (same positions in both matrices)
   std::vector<int> pZZ_;    // their (z, z) diagonal
   SpMat Jres_, Jrhs_;

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <stdexcept>
 
 namespace evas {
 
@@ -28,6 +29,32 @@ System::System(Model& model) : model_(model) {
   build_pattern(pair);
   setup_joints();
   setup_internal();
+  setup_quasi_static();
+}
+
+void System::setup_quasi_static() {
+  qs_.clear();
+  for (const Body& b : model_.bodies()) {
+    if (b.quasi_static.empty()) continue;
+    for (int k : b.quasi_static) {
+      if (k < 0 || k >= b.n() || (!qs_.empty() && b.offset + k <= qs_.back()))
+        throw std::logic_error("System: body '" + b.name + "': quasi-static mode " +
+                               std::to_string(k) + " out of range or out of order");
+      // without damping the mode's velocity is of index 2 (f_k would not depend on it)
+      if (!(b.data->damping[k] > 0.0))
+        throw InputError(describe_coordinate(b.offset + k) +
+                         ": a quasi-static mode needs modal damping (damping_ratio > 0): "
+                         "without it its velocity is an index-2 variable");
+      qs_.push_back(b.offset + k);
+    }
+    if (!inertial_.empty())
+      throw InputError("body '" + b.name +
+                       "' has quasi-static modes, which cannot be combined "
+                       "with the inertial element '" +
+                       model_.elements()[static_cast<std::size_t>(inertial_.front())]->name() +
+                       "' (its mass acts on the modes' accelerations); make it uncoupled or "
+                       "keep the body's modes dynamic");
+  }
 }
 
 void System::setup_body_work() {
@@ -241,7 +268,10 @@ std::string System::describe_coordinate(int i) const {
       os << " (rigid)";
     else
       os << " (elastic, " << std::sqrt(std::max(0.0, b.data->eigenvalues[k])) / (2.0 * M_PI)
-         << " Hz)";
+         << " Hz"
+         << (std::binary_search(b.quasi_static.begin(), b.quasi_static.end(), k) ? ", quasi-static"
+                                                                                 : "")
+         << ")";
     return os.str();
   }
   return Problem::describe_coordinate(i);

@@ -45,6 +45,8 @@ class System : public Problem {
   bool at_stop(double t, double* q, double* v) override;
   std::string describe_state(double t, const double* q, const double* v) const override;
   std::string describe_coordinate(int i) const override;
+  /// The bodies' quasi-static modes (Body::quasi_static) as coordinates.
+  const std::vector<int>& quasi_static() const override { return qs_; }
 
   // Joints as constraints (solver/joint.h; implemented in solver/system_joints.cpp).
   int constraint_count() const override { return mrows_; }
@@ -207,6 +209,9 @@ class System : public Problem {
   void reanchor(int body, double t, double* q, double* v);
   /// Offsets of the element internal states and the patterns of their Jacobians.
   void setup_internal();
+  /// qs_ from the bodies; refuses what the quasi-static rows cannot be
+  /// combined with (inertial elements, undamped modes).
+  void setup_quasi_static();
   /// Copies the current motion of element e's markers into its work; returns it.
   const MarkerMotion* gather_motion(std::size_t e);
   /// Element e's loads at the current internal states.
@@ -225,6 +230,7 @@ class System : public Problem {
   void joint_sides(double t, const double* q, const double* v);
 
   Model& model_;
+  std::vector<int> qs_;  // quasi-static coordinates
   SpMat pattern_;
   std::vector<JointWork> jwork_;
   SpMat gpattern_;
