@@ -362,3 +362,34 @@ TEST(QuasiStatic, SceneRunsWithIdaAndGeneralizedAlpha) {
   EXPECT_EQ(out.status, run::Status::failed);
   EXPECT_NE(out.message.find("quasi-static"), std::string::npos) << out.message;
 }
+
+// Joints: as penalty forces beside quasi-static modes (the penalty problem
+// keeps them); as constraints refused with the reason, by IDA and by
+// generalized-alpha.
+TEST(QuasiStatic, JointsRunAsPenaltyForcesAndConstraintFormsAreRefused) {
+  std::string text = read_scene_text(std::string(EVAS_SOURCE_DIR) + "/scenes/hinged_beam.yaml");
+  const std::string key = "modes: {elastic: 4}";
+  ASSERT_NE(text.find(key), std::string::npos);
+  text.replace(text.find(key), key.size(), "modes: {elastic: 4, quasi_static_above: 1000}");
+  const std::string path = std::string(EVAS_SOURCE_DIR) + "/scenes/hinged_beam.yaml";
+  for (const std::string name : {"ida", "generalized-alpha"}) {
+    Scene s = parse_scene(text, path);
+    ASSERT_FALSE(s.model->bodies()[0].quasi_static.empty());
+    run::SceneRun r(s, 0.02);
+    run::MemorySink sink;
+    IntegratorSettings set = s.integrator;
+    set.name = name;
+    set.step = 1e-4;
+    set.formulation = "penalty";
+    set.penalty_stiffness = 1e7;
+    set.penalty_damping = 1e3;
+    const run::Outcome ok = r.perform(set, sink);
+    EXPECT_EQ(ok.status, run::Status::completed) << name << ": " << ok.message;
+    set.formulation = "default";
+    run::SceneRun r2(s, 0.02);
+    const run::Outcome refused = r2.perform(set, sink);
+    EXPECT_EQ(refused.status, run::Status::failed) << name;
+    EXPECT_NE(refused.message.find("not yet combined with joints"), std::string::npos)
+        << refused.message;
+  }
+}
