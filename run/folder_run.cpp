@@ -74,7 +74,9 @@ const char* const kRunFiles[] = {"results.h5", "summary.json", "results.csv"};
 // run's files in `dir`, or "" when there are none.
 std::string earlier_results(const std::filesystem::path& dir) {
   std::vector<std::string> found;
-  std::filesystem::file_time_type newest{};
+  // (not file_time_type{}: libstdc++'s file clock counts from 2174, so every
+  // real time is before its zero and the message said "2173-12-31")
+  auto newest = std::filesystem::file_time_type::min();
   for (const char* f : kRunFiles) {
     std::error_code ec;
     if (!std::filesystem::exists(dir / f, ec)) continue;

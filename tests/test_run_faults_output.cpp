@@ -4,6 +4,8 @@
 // stopped by SIGTERM, a state an element refuses, steps that no longer advance
 // time, and a coarse fixed step. The tests run the real `evas` program in
 // temporary folders (helpers: run_faults_support.h).
+#include <ctime>
+
 #include "run_faults_support.h"
 
 TEST(RunFaults, SecondRunIntoTheSameFolderIsRefused) {
@@ -80,6 +82,13 @@ TEST(RunFaults, EarlierResultsAreNotReplacedSilently) {
                                         "(results.h5, summary.json and results.csv, written "))
       << refused.log;
   EXPECT_TRUE(contains(refused.log, "give --overwrite to replace them")) << refused.log;
+  {  // the earlier files' time is this year's (was 2173-12-31 whatever the files)
+    const std::time_t now = std::time(nullptr);
+    std::tm tm{};
+    gmtime_r(&now, &tm);
+    const std::string year = std::to_string(1900 + tm.tm_year);
+    EXPECT_TRUE(contains(refused.log, "written " + year + "-")) << refused.log;
+  }
   EXPECT_TRUE(contains(refused.log, "--out DIR")) << refused.log;
   EXPECT_EQ(read_text(out / "results.h5"), h5);  // not touched
   EXPECT_EQ(read_text(out / "summary.json"), json);
