@@ -35,7 +35,8 @@
 // second-order solver's mass diagonal), their velocities algebraic (index
 // one, as f_i depends on v_i through the modal damping). The start gives them
 // the static deflection (solver/quasi_static.h, done by the caller or here)
-// and yd_v = 0; their velocities stay in the local error test.
+// and yd_v from the time derivative of their rows; their velocities leave the
+// local error test (leave_out_quasi_static_velocities, where the reason is).
 //
 // Stepping: IDA runs in IDA_ONE_STEP mode inside advance() so every accepted
 // step is seen (min/max step). Outputs that are not stops are interpolated
@@ -238,8 +239,9 @@ class IdaIntegrator final : public Integrator {
 
  private:
   // y = [q; v], yd = [v; -f(t, q, v)] (consistent since the mass matrix is I);
-  // quasi-static coordinates settled first, their yd_v = 0 (not in the
-  // residual); DAE path: the consistent start of dae/consistent.h.
+  // quasi-static coordinates settled first, their yd_v from the time
+  // derivative of their rows (quasi_static_accelerations); DAE path: the consistent start of
+  // dae/consistent.h.
   void set_state(double t, const Vec& q, const Vec& v) {
     if (dae_) {
       dae_->consistent_start(t, q, v, y_.data(), yd_.data());

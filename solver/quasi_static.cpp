@@ -7,6 +7,23 @@
 
 namespace evas {
 
+namespace {
+
+// The block of A (on the problem's Jacobian pattern) in the rows and columns
+// of the quasi-static coordinates qs, dense.
+Mat quasi_static_block(const SpMat& A, const std::vector<int>& qs) {
+  const int nq = static_cast<int>(qs.size());
+  std::vector<int> at(static_cast<std::size_t>(A.cols()), -1);
+  for (int k = 0; k < nq; ++k) at[static_cast<std::size_t>(qs[k])] = k;
+  Mat B = Mat::Zero(nq, nq);
+  for (int k = 0; k < nq; ++k)
+    for (SpMat::InnerIterator it(A, qs[k]); it; ++it)
+      if (const int r = at[static_cast<std::size_t>(it.row())]; r >= 0) B(r, k) = it.value();
+  return B;
+}
+
+}  // namespace
+
 Vec mass_diagonal(const Problem& p) {
   Vec m = Vec::Ones(p.size());
   for (int i : p.quasi_static()) m[i] = 0.0;
@@ -20,9 +37,6 @@ void settle_quasi_static(Problem& p, double t, Vec& q, Vec& v) {
   for (int i : qs) v[i] = 0.0;
   SpMat K = p.jacobian_pattern(), C = p.jacobian_pattern();
   Vec f(n), r(nq), dq(nq);
-  Mat KQQ(nq, nq);
-  std::vector<int> col(static_cast<std::size_t>(n), -1);
-  for (int a = 0; a < nq; ++a) col[static_cast<std::size_t>(qs[a])] = a;
   constexpr int kMaxIterations = 50;
   // f at q, or false when the model refuses the state (RangeError: a film
   // closed, a contact out of range): the step is then halved
@@ -42,14 +56,7 @@ void settle_quasi_static(Problem& p, double t, Vec& q, Vec& v) {
   Vec qt = q, rt(nq);
   for (int it = 0; it < kMaxIterations; ++it) {
     p.force_jacobian(t, q.data(), v.data(), K, C);
-    KQQ.setZero();
-    for (int c = 0; c < n; ++c) {
-      const int b = col[static_cast<std::size_t>(c)];
-      if (b < 0) continue;
-      for (SpMat::InnerIterator e(K, c); e; ++e)
-        if (const int a = col[static_cast<std::size_t>(e.row())]; a >= 0) KQQ(a, b) = e.value();
-    }
-    const Eigen::PartialPivLU<Mat> lu(KQQ);
+    const Eigen::PartialPivLU<Mat> lu(quasi_static_block(K, qs));
     dq = lu.solve(r);
     if (!dq.allFinite()) break;
     double qmax = 0.0;
@@ -114,16 +121,7 @@ void quasi_static_accelerations(Problem& p, double t, const Vec& q, const Vec& v
   for (int k = 0; k < nq; ++k) g[k] = (-3.0 * f0[qs[k]] + 4.0 * f1[qs[k]] - f2[qs[k]]) / (2.0 * e);
   SpMat K = p.jacobian_pattern(), C = p.jacobian_pattern();
   p.force_jacobian(t, q.data(), v.data(), K, C);
-  std::vector<int> col(static_cast<std::size_t>(n), -1);
-  for (int k = 0; k < nq; ++k) col[static_cast<std::size_t>(qs[k])] = k;
-  Mat CQQ = Mat::Zero(nq, nq);
-  for (int c = 0; c < n; ++c) {
-    const int b = col[static_cast<std::size_t>(c)];
-    if (b < 0) continue;
-    for (SpMat::InnerIterator it(C, c); it; ++it)
-      if (const int r = col[static_cast<std::size_t>(it.row())]; r >= 0) CQQ(r, b) = it.value();
-  }
-  const Vec aq = Eigen::PartialPivLU<Mat>(CQQ).solve(g);
+  const Vec aq = Eigen::PartialPivLU<Mat>(quasi_static_block(C, qs)).solve(g);
   if (!aq.allFinite()) return;  // (a_Q = 0 stays: the integrator's first steps resolve it)
   for (int k = 0; k < nq; ++k) a[qs[k]] = -aq[k];
 }
