@@ -44,7 +44,16 @@ void NewmarkIntegrator::setup() {
   C_ = K_;
   so_ = std::make_unique<SecondOrderSolver>(K_);
   qs_ = p_->quasi_static();
-  if (!qs_.empty()) so_->set_mass_diagonal(mass_diagonal(*p_));
+  if (!qs_.empty()) {
+    if (const double rho = algebraic_amplification(par_); rho >= 1.0 - 1e-12)
+      throw InputError(name() + ": its Newmark relations (beta " + format_number(par_.beta) +
+                       ", gamma " + format_number(par_.gamma) +
+                       ") amplify the accelerations of a coordinate without inertia by " +
+                       format_number(rho) + " per step, so it cannot solve quasi-static modes (" +
+                       p_->describe_coordinate(qs_.front()) +
+                       "); use generalized-alpha with rho_inf < 1, or ida");
+    so_->set_mass_diagonal(mass_diagonal(*p_));
+  }
   combined_ = (it_ == Iteration::effective_mass || it_ == Iteration::newton) &&
               s_.step_control != StepControl::adaptive;
   so_->C().coeffs().setZero();  // (factorize_combination's S = K + 0 C)
@@ -370,6 +379,23 @@ bool NewmarkIntegrator::fail(const std::string& why, double t1, double h, int it
              std::to_string(iterations) + " iterations" + contraction_advice(h) +
              where(t1, h, q1_, v1_);
   return false;
+}
+
+double NewmarkIntegrator::algebraic_amplification(const Parameters& par) {
+  // A coordinate whose position its equation fixes (q_{n+1} given) takes its
+  // v and h a from the Newmark relations alone:
+  //   h a_{n+1} = (dq/h - v_n - (1/2 - beta) h a_n) / beta,
+  //   v_{n+1} = v_n + (1 - gamma) h a_n + gamma h a_{n+1},
+  // a linear recursion in (v, h a) whose homogeneous matrix is B below; its
+  // spectral radius (2 + sqrt 3 for linear acceleration, 1 for the
+  // trapezoidal rule, 0.8 for generalized-alpha at rho_inf 0.8).
+  const double b = par.beta, g = par.gamma;
+  const double b11 = 1.0 - g / b, b12 = (1.0 - g) - g * (0.5 - b) / b;
+  const double b21 = -1.0 / b, b22 = -(0.5 - b) / b;
+  const double tr = b11 + b22, det = b11 * b22 - b12 * b21, disc = tr * tr - 4.0 * det;
+  if (disc < 0.0) return std::sqrt(det);
+  const double r = std::sqrt(disc);
+  return std::max(std::abs(0.5 * (tr + r)), std::abs(0.5 * (tr - r)));
 }
 
 double NewmarkIntegrator::velocity_error_coefficient(const Parameters& par) {

@@ -40,7 +40,9 @@
 // carry a start's residual along); S has (1 - alpha_m) m in place of
 // (1 - alpha_m) I. Their accelerations follow from the Newmark relations.
 // The fixed point without a body operator (R scaled by the unit mass) cannot
-// take them (refused).
+// take them (refused), nor can parameters whose relations amplify such a
+// coordinate's accelerations (algebraic_amplification >= 1: linear
+// acceleration, 2 + sqrt 3 per step; generalized-alpha at rho_inf = 1).
 // Convergence:
 //   balance (linear-acceleration): eps = ||R||_2 / max(||(1 - alpha_m) a + alpha_m a_n||_2,
 //     ||a_n||_2, atol) <= balance_tol, checked on the iterate before an update, so
@@ -103,6 +105,9 @@ class NewmarkIntegrator : public FixedStepIntegrator {
   /// gamma (1/2 + alpha_m - alpha_f) - 1/6; 1/12 for linear acceleration.
   static double velocity_error_coefficient(const Parameters& par);
   bool takes_quasi_static() const override { return true; }
+  /// Spectral radius of the Newmark relations' recursion for a coordinate
+  /// without inertia (newmark.cpp): at or above 1 quasi-static modes are refused.
+  static double algebraic_amplification(const Parameters& par);
 
  protected:
   /// The method's parameters from the settings (s_); throws InputError.

@@ -20,6 +20,7 @@
 
 #include "elements/spring_damper.h"
 #include "integrators/integrator.h"
+#include "integrators/newmark.h"
 #include "integrators/second_order_ls.h"
 #include "io/scene.h"
 #include "random_body.h"
@@ -391,5 +392,41 @@ TEST(QuasiStatic, JointsRunAsPenaltyForcesAndConstraintFormsAreRefused) {
     EXPECT_EQ(refused.status, run::Status::failed) << name;
     EXPECT_NE(refused.message.find("not yet combined with joints"), std::string::npos)
         << refused.message;
+  }
+}
+
+// The Newmark relations on a coordinate whose position its equation fixes:
+// the recursion of (v, h a) has spectral radius 2 + sqrt(3) for linear
+// acceleration (beta 1/6, gamma 1/2: h a_{n+1} = -6 v_n - 2 h a_n + ...),
+// 1 for generalized-alpha at rho_inf = 1 (the trapezoidal rule) and rho_inf
+// for generalized-alpha below it. Those at or above 1 refuse quasi-static
+// modes (linear acceleration diverged on the engine at t = 0.2 ms).
+TEST(QuasiStatic, NewmarkParametersThatAmplifyAlgebraicRowsRefuse) {
+  auto gen_alpha = [](double rho) {
+    NewmarkIntegrator::Parameters p;
+    p.alpha_m = (2.0 * rho - 1.0) / (rho + 1.0);
+    p.alpha_f = rho / (rho + 1.0);
+    p.gamma = 0.5 - p.alpha_m + p.alpha_f;
+    p.beta = 0.25 * std::pow(1.0 - p.alpha_m + p.alpha_f, 2);
+    return p;
+  };
+  EXPECT_NEAR(NewmarkIntegrator::algebraic_amplification(NewmarkIntegrator::Parameters{}),
+              2.0 + std::sqrt(3.0), 1e-12);
+  EXPECT_NEAR(NewmarkIntegrator::algebraic_amplification(gen_alpha(1.0)), 1.0, 1e-12);
+  for (double rho : {0.0, 0.5, 0.8, 0.9})
+    EXPECT_NEAR(NewmarkIntegrator::algebraic_amplification(gen_alpha(rho)), rho, 1e-7) << rho;
+  for (const std::string name : {"linear-acceleration", "generalized-alpha"}) {
+    TwoModes tm = two_modes(40.0, 900.0, 1e5, Vec3::Zero(), true);
+    System sys(*tm.model);
+    IntegratorSettings s = settings(name, 1e-6);
+    s.rho_inf = 1.0;
+    s.iteration = Iteration::effective_mass;
+    try {
+      make_integrator(name)->init(sys, 0.0, Vec::Zero(2), Vec::Zero(2), s);
+      ADD_FAILURE() << name << " took quasi-static modes";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("amplify the accelerations"), std::string::npos)
+          << e.what();
+    }
   }
 }
