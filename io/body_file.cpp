@@ -8,6 +8,7 @@
 #include <optional>
 
 #include "io/hdf5_util.h"
+#include "io/huge_pages.h"
 #include "model/invariants.h"
 
 namespace evas {
@@ -387,6 +388,8 @@ ModalBody read_body(hid_t file) {
   const std::vector<hsize_t> w_shapes = {3 * N, n}, w_n = {n};
   const std::vector<double> shapes = read_doubles(file, "/modes/shapes", dims, &w_shapes);
   expect_finite("/modes/shapes", shapes);
+  body.modes.resize(static_cast<Eigen::Index>(3 * N), static_cast<Eigen::Index>(n));
+  advise_huge_pages(body.modes.data(), shapes.size() * sizeof(double));
   body.modes = Eigen::Map<const RowMat>(shapes.data(), static_cast<Eigen::Index>(3 * N),
                                         static_cast<Eigen::Index>(n));
   const std::vector<double> damping = read_doubles(file, "/modes/damping", dims, &w_n);

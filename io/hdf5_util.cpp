@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <cstring>
 
+#include "io/huge_pages.h"
 #include "io/isolated_read.h"
 
 namespace evas::h5 {
@@ -113,7 +114,10 @@ std::vector<T> read_numeric(hid_t loc, const std::string& name, std::vector<hsiz
                   std::to_string(static_cast<long long>(stored)) + " bytes (corrupt file?)");
   hsize_t total = 1;
   for (hsize_t d : dims) total *= d;
-  std::vector<T> out(static_cast<std::size_t>(total));
+  std::vector<T> out;
+  out.reserve(static_cast<std::size_t>(total));
+  advise_huge_pages(out.data(), static_cast<std::size_t>(total) * sizeof(T));
+  out.resize(static_cast<std::size_t>(total));
   if (total > 0 && H5Dread(dset, mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()) < 0)
     throw Failure(dset_name(name) + " cannot be read (file truncated or corrupt?)");
   return out;
