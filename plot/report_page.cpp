@@ -365,6 +365,38 @@ void surface_section(const Run& run, Drawer& draw, report::Page& page, ReportRes
   }
 }
 
+// The list of the files a report wrote, beside its page: with --overwrite the
+// next report removes exactly these before it draws, so that no figure of the
+// earlier report stays in the folder unlinked (a section the new run does not
+// have), and nothing else in the folder is touched.
+constexpr const char* kManifest = "report-files.txt";
+
+void remove_earlier_report(const fs::path& dir) {
+  std::ifstream f(dir / kManifest);
+  std::string name;
+  std::error_code ec;
+  while (std::getline(f, name))
+    // names as the report writes them: plain files in the folder itself
+    if (!name.empty() && name.find('/') == std::string::npos && name != "." && name != "..")
+      if (fs::is_regular_file(dir / name, ec)) fs::remove(dir / name, ec);
+  f.close();
+  fs::remove(dir / kManifest, ec);
+}
+
+void write_manifest(const fs::path& dir, ReportResult& out) {
+  const fs::path tmp = dir / (std::string(kManifest) + ".part");
+  {
+    std::ofstream f(tmp, std::ios::binary);
+    for (const std::string& file : out.files) f << fs::path(file).filename().string() << "\n";
+    f.close();
+    if (!f) throw InputError(tmp.string() + ": cannot write the report's file list");
+  }
+  std::error_code ec;
+  fs::rename(tmp, dir / kManifest, ec);
+  if (ec) throw InputError((dir / kManifest).string() + ": cannot write: " + ec.message());
+  out.files.push_back((dir / kManifest).string());
+}
+
 }  // namespace
 
 ReportResult write_report(const std::string& results, const fs::path& dir, const ReportOptions& o) {
@@ -389,6 +421,7 @@ ReportResult write_report(const std::string& results, const fs::path& dir, const
   fs::create_directories(dir, ec);
   if (ec) throw InputError("--out " + dir.string() + ": cannot create the folder: " + ec.message());
   fs::remove(out.index, ec);  // a failure below must not leave the old page over new figures
+  remove_earlier_report(dir);
 
   report::Page page(o.title.empty() ? "Engine report: " + scene_name(run) : o.title);
   page.paragraph("Written by " + code("evas report") + " from " + code(run.path) +
@@ -409,9 +442,10 @@ ReportResult write_report(const std::string& results, const fs::path& dir, const
     f.close();
     if (!f) throw InputError(tmp.string() + ": cannot write the report page");
   }
+  out.files.push_back(out.index.string());
+  write_manifest(dir, out);
   fs::rename(tmp, out.index, ec);
   if (ec) throw InputError(out.index.string() + ": cannot write the report page: " + ec.message());
-  out.files.push_back(out.index.string());
   return out;
 }
 

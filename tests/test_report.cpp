@@ -264,7 +264,8 @@ TEST(Report, BadInputsAreErrorsNamingWhatIsWrong) {
 }
 
 // A crank-angle run without journal-bearing channels: a report of what there
-// is (summary, torsion), its bearing sections naming the request to add.
+// is (summary, torsion), its bearing sections naming the request to add; over
+// an earlier report with --overwrite, it leaves none of that one's figures.
 TEST(Report, WithoutJournalBearingsShowsWhatThereIs) {
   TempFolder tmp;
   std::string scene = read_text(kEngine);
@@ -283,12 +284,27 @@ TEST(Report, WithoutJournalBearingsShowsWhatThereIs) {
                                 "--out", (tmp.path() / "e").string()},
                                tmp.path() / "run.log");
   ASSERT_EQ(run.code, 0) << run.log;
+  // written over the full engine's report in the same folder (--overwrite):
+  // none of that report's bearing figures may stay behind, a file of the
+  // user's there does
+  const fs::path dir = tmp.path() / "r";
+  const Outcome full = run_evas({"report", engine_results().string(), "--out", dir.string()},
+                                tmp.path() / "full.log");
+  ASSERT_EQ(full.code, 0) << full.log;
+  write_text(dir / "my-notes.txt", "mine");
   const Outcome o = run_evas(
-      {"report", (tmp.path() / "e" / "results.h5").string(), "--out", (tmp.path() / "r").string()},
+      {"report", (tmp.path() / "e" / "results.h5").string(), "--out", dir.string(), "--overwrite"},
       tmp.path() / "report.log");
   ASSERT_EQ(o.code, 0) << o.log;
   EXPECT_TRUE(contains(o.log, "note: no journal bearing")) << o.log;
-  const std::string html = read_text(tmp.path() / "r" / "index.html");
+  const std::string html = read_text(dir / "index.html");
+  std::set<std::string> pngs;
+  for (const auto& e : fs::directory_iterator(dir))
+    if (e.path().extension() == ".png") pngs.insert(e.path().filename().string());
+  const auto linked = attribute_values(html, "src");
+  EXPECT_EQ(pngs, std::set<std::string>(linked.begin(), linked.end()))
+      << "figures in the folder that the page does not show (left by the earlier report?)";
+  EXPECT_EQ(read_text(dir / "my-notes.txt"), "mine");
   EXPECT_TRUE(contains(html, "no journal-bearing channels"));
   EXPECT_TRUE(contains(html, "{element: NAME}"));
   const auto srcs = attribute_values(html, "src");
