@@ -7,7 +7,7 @@
 # allowed.
 #   tests/layers_check.sh SOURCE_DIR
 set -euo pipefail
-src="$1"
+src="$(cd "$1" && pwd)"  # absolute: the probe project is configured elsewhere
 tmp="$(mktemp -d "${TMPDIR:-/tmp}/evas-layers.XXXXXX")"
 trap 'rm -rf "$tmp"' EXIT
 tree="$tmp/tree"

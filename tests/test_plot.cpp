@@ -252,3 +252,36 @@ TEST(Plot, AStartedGnuplotDrawsItsScriptsLater) {
   evas::GnuplotProcess unused;  // ends with the test, drawing nothing
   EXPECT_TRUE(unused.ready());
 }
+
+// have_gnuplot looks for an executable regular file `gnuplot` in the folders
+// of PATH, as the shell's `command -v` does: not a folder of that name, not a
+// file without execute permission, and an empty PATH entry is the current
+// folder.
+TEST(Plot, GnuplotIsLookedUpOnThePath) {
+  TempFolder tmp;
+  const fs::path none = tmp.path() / "none", exe = tmp.path() / "exe", dir = tmp.path() / "dir",
+                 plain = tmp.path() / "plain";
+  for (const auto& d : {none, exe, dir, plain}) fs::create_directories(d);
+  write_text(exe / "gnuplot", "#!/bin/sh\n");
+  fs::permissions(exe / "gnuplot", fs::perms::owner_all);
+  fs::create_directories(dir / "gnuplot");
+  write_text(plain / "gnuplot", "not a program\n");
+  fs::permissions(plain / "gnuplot", fs::perms::owner_read | fs::perms::owner_write);
+  const char* old = std::getenv("PATH");
+  const std::string saved = old ? old : "";
+  auto with_path = [](const std::string& p) {
+    ::setenv("PATH", p.c_str(), 1);
+    return evas::have_gnuplot();
+  };
+  EXPECT_FALSE(with_path(none.string()));
+  EXPECT_FALSE(with_path(dir.string() + ":" + none.string()));
+  EXPECT_TRUE(with_path(none.string() + ":" + exe.string()));
+  EXPECT_TRUE(with_path(dir.string() + "::" + exe.string()));
+  const fs::path here = fs::current_path();
+  fs::current_path(exe);
+  EXPECT_TRUE(with_path(none.string() + ":"));  // the empty entry: this folder
+  fs::current_path(here);
+  EXPECT_FALSE(with_path(none.string() + ":"));
+  EXPECT_FALSE(with_path(plain.string()));  // no execute bit (refused to root as well)
+  ::setenv("PATH", saved.c_str(), 1);
+}
