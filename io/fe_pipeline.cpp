@@ -5,6 +5,7 @@
 #include <unistd.h>
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -194,16 +195,18 @@ PipelineParams read_pipeline_params(const std::string& yaml_path, const std::str
 }
 
 std::string find_program(const std::vector<std::string>& names) {
+  // as the shell searches: PATH unset is /usr/bin:/bin, an empty entry is the
+  // current folder
   const char* path = std::getenv("PATH");
-  if (!path) return "";
+  const std::string dirs = path ? path : "/usr/bin:/bin";
   for (const std::string& n : names) {
-    std::istringstream is(path);
-    std::string dir;
-    while (std::getline(is, dir, ':')) {
-      if (dir.empty()) continue;
-      const fs::path f = fs::path(dir) / n;
+    std::size_t start = 0;
+    while (start <= dirs.size()) {
+      const std::size_t end = std::min(dirs.find(':', start), dirs.size());
+      const fs::path f = fs::path(end > start ? dirs.substr(start, end - start) : ".") / n;
       std::error_code ec;
       if (fs::is_regular_file(f, ec) && access(f.c_str(), X_OK) == 0) return f.string();
+      start = end + 1;
     }
   }
   return "";

@@ -60,7 +60,9 @@ struct PipelineResult {
   std::vector<StageTime> stages;
 };
 
-/// Path of the first program of `names` found on PATH, or "" if none.
+/// Path of the first program of `names` found on PATH (an executable regular
+/// file; an empty entry is the current folder, no PATH is /usr/bin:/bin), or ""
+/// if none.
 std::string find_program(const std::vector<std::string>& names);
 
 /// Runs a shell command with stdout and stderr to `log`; throws InputError naming

@@ -1,35 +1,18 @@
 // Figures by gnuplot (gnuplot.h).
 #include "plot/gnuplot.h"
 
-#include <sys/stat.h>
-#include <unistd.h>
-
-#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <string>
 
+#include "io/fe_pipeline.h"  // find_program
+
 namespace evas {
 
-// An executable `gnuplot` in a folder of PATH (what the shell's `command -v`
-// finds), looked up here rather than by starting a shell for it (5 to 10 ms
-// a call; a sweep asks at its start and again for its figures).
-bool have_gnuplot() {
-  const char* path = std::getenv("PATH");
-  const std::string dirs = path ? path : "/usr/bin:/bin";
-  std::size_t start = 0;
-  while (start <= dirs.size()) {
-    const std::size_t end = std::min(dirs.find(':', start), dirs.size());
-    const std::string dir = end > start ? dirs.substr(start, end - start) : ".";
-    const std::string file = dir + "/gnuplot";
-    struct stat st;
-    if (::stat(file.c_str(), &st) == 0 && S_ISREG(st.st_mode) && ::access(file.c_str(), X_OK) == 0)
-      return true;
-    start = end + 1;
-  }
-  return false;
-}
+// Looked up on PATH (find_program), not by starting a shell for `command -v`
+// (5 to 10 ms a call; a sweep asks at its start and again for its figures).
+bool have_gnuplot() { return !find_program({"gnuplot"}).empty(); }
 
 bool run_gnuplot(const std::filesystem::path& script) {
   return run_gnuplot(std::vector<std::filesystem::path>{script});
