@@ -1,50 +1,17 @@
 // evas run SCENE: read the scene, integrate, record results as the run goes.
 #include <boost/program_options.hpp>
 #include <cmath>
-#include <cstdio>
-#include <filesystem>
 #include <iostream>
 
 #include "apps/commands.h"
+#include "apps/scene_options.h"
 #include "integrators/integrator.h"
 #include "integrators/settings.h"
-#include "io/scene.h"
 #include "run/folder_run.h"
+#include "run/period.h"
 #include "run/step_advice.h"
-#include "study/scene_edit.h"
 
 namespace evas::cli {
-
-namespace {
-
-// Without --out the scene name becomes the folder out/<name>: it must be one
-// plain path component, so that no scene writes outside out/.
-void check_folder_name(const Scene& scene) {
-  const std::string& n = scene.name;
-  std::string why;
-  if (n.empty()) why = "is empty";
-  if (n == "." || n == "..") why = "is a relative folder";
-  if (n.find('/') != std::string::npos || n.find('\\') != std::string::npos)
-    why = "contains a path separator";
-  std::string shown;
-  for (char ch : n) {
-    const unsigned char c = static_cast<unsigned char>(ch);
-    if (c < 0x20 || c == 0x7F) {
-      why = "contains a control character";
-      char buf[8];
-      std::snprintf(buf, sizeof buf, "\\x%02x", c);
-      shown += buf;
-    } else {
-      shown += ch;
-    }
-  }
-  if (!why.empty())
-    throw InputError(scene.path + ": name: '" + shown + "' " + why +
-                     " and cannot name the output folder out/<name>; use a plain name (no '/', "
-                     "'..' or control characters), or choose the folder with --out");
-}
-
-}  // namespace
 
 int cmd_run(const std::vector<std::string>& args) {
   po::options_description opts(
@@ -58,28 +25,19 @@ int cmd_run(const std::vector<std::string>& args) {
       "'failed: ...',\n"
       "its statistics and DIR/summary.json.\n\n"
       "options");
-  opts.add_options()("help,h", "show this help")(
-      "integrator", po::value<std::string>(),
-      ("integrator: " + builtin_integrator_list() + " or a loaded plug-in").c_str())(
-      "rtol", po::value<std::string>(), "relative tolerance (adaptive integrators)")(
-      "atol", po::value<std::string>(), "absolute tolerance (adaptive integrators)")(
-      "step", po::value<std::string>(),
-      ("fixed step [s] (" + builtin_integrator_list(true) + ")").c_str())(
-      "set,s", po::value<std::vector<std::string>>()->composing(),
-      "KEY=VALUE: any integrator setting, repeatable (see --help-settings); applied after "
-      "the scene's integrator block and the options above")(
-      "help-settings", "list every integrator setting with its default and meaning")(
-      "param,p", po::value<std::vector<std::string>>()->composing(),
-      "ITEM.KEY=VALUE: change a scene parameter before the run, repeatable, as in evas study "
-      "(e.g. crank.lof.speed=418.879); the results file keeps the changed scene")(
-      "t-end", po::value<double>(), "end time [s] (overrides the scene)")(
-      "out", po::value<std::string>(), "output directory (default out/<scene name>)")(
-      "overwrite",
-      "replace the results of an earlier run in the output directory (without it such a "
-      "directory is refused, exit 1)")("csv", "also write DIR/results.csv")(
-      "max-wall", po::value<double>(),
-      "wall-time limit [s]: the run stops with status 'failed: wall-time limit ...' "
-      "(exit 2, rows kept) when it runs longer")("quiet,q", "no progress line");
+  opts.add_options()("help,h", "show this help");
+  add_scene_run_options(opts);
+  opts.add_options()("t-end", po::value<double>(), "end time [s] (overrides the scene)")(
+      "period", po::value<std::string>(),
+      "the period whose last two cycles are compared, with its unit (720deg, 0.04s); default: "
+      "the scene's own (720 deg of the crank with pistons, 360 without)")(
+      "settle-tol", po::value<double>(),
+      "a run whose last two cycles differ by more than this (per channel, relative) is warned "
+      "of as not settled; summary.json, settledness (default 1e-3)")(
+      "until-settled", po::value<double>(),
+      "TOL: run whole cycles until the last two differ by at most TOL (then stop, completed), "
+      "at most --max-cycles of them; replaces --t-end")(
+      "max-cycles", po::value<int>(), "with --until-settled: the most cycles run (default 100)");
   po::variables_map vm;
   if (parse_args(args, opts, {"scene"}, vm)) return 0;
   if (vm.count("help-settings")) {
@@ -91,27 +49,8 @@ int cmd_run(const std::vector<std::string>& args) {
     return 1;
   }
   const bool quiet = vm.count("quiet") > 0;
-
-  // --- input: everything here exits 1 on InputError (caught in main) ---
-  Scene scene = vm.count("param")
-                    ? study::load_scene_source(vm["scene"].as<std::string>(),
-                                               vm["param"].as<std::vector<std::string>>())
-                          .parse()
-                    : read_scene(vm["scene"].as<std::string>());
+  Scene scene = scene_from_options("run", vm);
   IntegratorSettings& set = scene.integrator;
-  if (vm.count("integrator"))
-    set_integrator_setting(set, "name", vm["integrator"].as<std::string>());
-  for (const char* key : {"rtol", "atol", "step"})
-    if (vm.count(key)) {
-      try {
-        set_integrator_setting(set, key, vm[key].as<std::string>());
-      } catch (const InputError& e) {
-        throw InputError(std::string("--") + e.what());
-      }
-    }
-  if (vm.count("set"))
-    for (const auto& a : vm["set"].as<std::vector<std::string>>()) apply_setting_assignment(set, a);
-  warn_unread_settings("run", vm, set);
   if (vm.count("t-end")) {
     scene.t_end = vm["t-end"].as<double>();
     if (!std::isfinite(scene.t_end))
@@ -119,19 +58,31 @@ int cmd_run(const std::vector<std::string>& args) {
     if (!(scene.t_end > scene.t_start))
       throw InputError("--t-end must be after the start time " + std::to_string(scene.t_start));
   }
-  double max_wall = 0.0;
-  if (vm.count("max-wall")) {
-    max_wall = vm["max-wall"].as<double>();
-    if (!(max_wall > 0.0)) throw InputError("--max-wall must be a positive number of seconds");
+  if (vm.count("settle-tol")) {
+    const double tol = vm["settle-tol"].as<double>();
+    if (!(tol > 0.0) || !std::isfinite(tol))
+      throw InputError("--settle-tol must be a positive number (a relative difference)");
   }
-  if (!vm.count("out")) check_folder_name(scene);
-  run::FolderOptions fo;
-  fo.dir = vm.count("out") ? std::filesystem::path(vm["out"].as<std::string>())
-                           : std::filesystem::path("out") / scene.name;
-  fo.csv = vm.count("csv") > 0;
-  fo.max_wall = max_wall;
-  fo.quiet = quiet;
-  fo.overwrite = vm.count("overwrite") > 0;
+  double until = 0.0;
+  if (vm.count("until-settled")) {
+    until = vm["until-settled"].as<double>();
+    if (!(until > 0.0) || !std::isfinite(until))
+      throw InputError("--until-settled must be a positive number (a relative difference)");
+    if (vm.count("t-end"))
+      throw InputError(
+          "--until-settled runs until the run settles: give --max-cycles, not --t-end");
+    const int cycles = vm.count("max-cycles") ? vm["max-cycles"].as<int>() : 100;
+    if (cycles < 2) throw InputError("--max-cycles must be at least 2 (two cycles to compare)");
+    const run::ScenePeriod per =
+        run::scene_period(scene, vm.count("period") ? vm["period"].as<std::string>() : "");
+    scene.t_end = scene.t_start + cycles * per.seconds;
+  } else if (vm.count("max-cycles")) {
+    throw InputError("--max-cycles goes with --until-settled");
+  }
+  run::FolderOptions fo = folder_from_options("run", vm, scene);
+  if (vm.count("period")) fo.period = vm["period"].as<std::string>();
+  if (vm.count("settle-tol")) fo.settle_tol = vm["settle-tol"].as<double>();
+  fo.until_settled = until;
   for (const std::string& w : scene.warnings) std::cerr << "evas run: warning: " << w << "\n";
   if (const std::string w = coarse_step_warning(*scene.model, set); !w.empty())
     std::cerr << "evas run: warning: " << w << "\n";
@@ -147,6 +98,10 @@ int cmd_run(const std::vector<std::string>& args) {
               << " Jacobian evaluations, " << stats.wall_seconds << " s wall\n";
     std::cerr << "  results: " << r.results << "\n  summary: " << r.summary << "\n";
     if (!r.csv.empty()) std::cerr << "  csv:     " << r.csv << "\n";
+    if (r.settledness.measured)
+      std::cerr << "  settled: " << (r.settledness.settled() ? "yes" : "no")
+                << ", the last two cycles differ by " << r.settledness.max_difference << " ("
+                << r.settledness.worst_channel << ")\n";
   }
   return code;
 }

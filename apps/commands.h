@@ -37,6 +37,8 @@ void warn_unread_settings(const std::string& command, const po::variables_map& v
                           const IntegratorSettings& s);
 
 int cmd_run(const std::vector<std::string>& args);
+/// `evas periodic SCENE`: the periodic cycle of a scene (run/periodic_folder.h).
+int cmd_periodic(const std::vector<std::string>& args);
 int cmd_info(const std::vector<std::string>& args);
 int cmd_export(const std::vector<std::string>& args);
 int cmd_body(const std::vector<std::string>& args);

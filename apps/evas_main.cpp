@@ -18,6 +18,8 @@ const char* kUsage =
     "\n"
     "commands:\n"
     "  run SCENE.yaml      simulate a scene; writes results.h5, summary.json (and results.csv)\n"
+    "  periodic SCENE.yaml the steady cycle of a scene whose forcing repeats (engine cycle),\n"
+    "                      with its iterations and Floquet multipliers\n"
     "  info BODY.h5        modes, mass properties and invariant checks of a modal-body file\n"
     "  export RESULTS.h5   convert a results file (--csv FILE)\n"
     "  body truss OUT.h5   generate a modal-body file of a truss beam\n"
@@ -97,6 +99,7 @@ int main(int argc, char** argv) {
     load_plugins(args);
     if (job.active && job.rank > 0) return evas::cli::mpi_worker_loop();
     if (cmd == "run") return evas::cli::cmd_run(args);
+    if (cmd == "periodic") return evas::cli::cmd_periodic(args);
     if (cmd == "info") return evas::cli::cmd_info(args);
     if (cmd == "export") return evas::cli::cmd_export(args);
     if (cmd == "body") return evas::cli::cmd_body(args);

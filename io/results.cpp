@@ -271,18 +271,6 @@ std::vector<ChannelSummary> ResultsWriter::summary() const {
 // ---------------------------------------------------------------------------
 // Summary JSON (hand-written: a flat, stable layout that any tool can read).
 
-namespace {
-
-std::string json_number(double x) {
-  if (!std::isfinite(x)) return "null";
-  if (x == 0.0) x = 0.0;  // no "-0"
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%.17g", x);
-  return buf;
-}
-
-}  // namespace
-
 double process_peak_memory_mb() {
   std::ifstream f("/proc/self/status");
   std::string line;
@@ -333,6 +321,7 @@ void write_summary_json(const std::string& path, const RunSummary& s) {
   o << "  \"stats\": {\n";
   o << stats_json_members(st, "    ") << "\n";
   o << "  },\n";
+  for (const auto& [key, value] : s.extra) o << "  " << json_string(key) << ": " << value << ",\n";
   o << "  \"channels\": [";
   for (std::size_t c = 0; c < s.channels.size(); ++c) {
     o << (c ? ",\n" : "\n");

@@ -19,6 +19,7 @@
 #include <chrono>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "integrators/integrator.h"
@@ -125,6 +126,9 @@ struct RunSummary {
   IntegratorStats stats;
   std::vector<Channel> channels;
   std::vector<ChannelSummary> channel_summary;
+  /// Further members, written after "stats" in this order: (key, JSON value
+  /// as text, e.g. the settledness of the run or a periodic solution's method).
+  std::vector<std::pair<std::string, std::string>> extra;
 };
 
 /// Peak resident memory of this process so far [MB] (Linux: VmHWM of

@@ -1,5 +1,6 @@
 #include "io/text_escape.h"
 
+#include <cmath>
 #include <cstdio>
 
 namespace evas {
@@ -105,6 +106,14 @@ std::string shell_quote(const std::string& s) {
       out += c;
   }
   return out + "'";
+}
+
+std::string json_number(double x) {
+  if (!std::isfinite(x)) return "null";
+  if (x == 0.0) x = 0.0;  // no "-0"
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%.17g", x);
+  return buf;
 }
 
 }  // namespace evas

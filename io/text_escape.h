@@ -5,6 +5,7 @@
 //                holds a comma, a quote, CR or LF; otherwise as it is
 //   valid_utf8   the text with every invalid UTF-8 sequence replaced by U+FFFD
 //   shell_quote  a POSIX shell word: '...' with ' written as '\'' (any bytes)
+//   json_number  a JSON number at 17 digits (round-trips), null when not finite, no -0
 #pragma once
 
 #include <string>
@@ -15,5 +16,6 @@ std::string valid_utf8(const std::string& s);
 std::string json_string(const std::string& s);
 std::string csv_field(const std::string& s);
 std::string shell_quote(const std::string& s);
+std::string json_number(double x);
 
 }  // namespace evas

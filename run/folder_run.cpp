@@ -5,10 +5,12 @@
 #include <ctime>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "io/results.h"
 #include "io/run_lock.h"
+#include "run/period.h"
 #include "run/progress.h"
 #include "run/stop.h"
 
@@ -21,12 +23,18 @@ namespace {
 class ResultsSink : public RowSink {
  public:
   ResultsSink(const std::string& path, ResultsWriter::Options opt, const Stop& stop,
-              Progress& progress)
-      : path_(path), opt_(std::move(opt)), stop_(stop), progress_(progress) {}
+              Progress& progress, CycleTracker& cycles, double until_settled)
+      : path_(path),
+        opt_(std::move(opt)),
+        stop_(stop),
+        progress_(progress),
+        cycles_(cycles),
+        until_settled_(until_settled) {}
 
   void begin(const std::vector<Channel>& channels, const Integrator& integ) override {
     integ_ = &integ;
     writer_ = std::make_unique<ResultsWriter>(path_, channels, opt_);
+    cycles_.begin(channels);
   }
   void between_steps(double t, double h) override {
     if (stop_.due()) stop_.stop(t, h);
@@ -35,10 +43,14 @@ class ResultsSink : public RowSink {
   }
   void row(double t, const double* values) override {
     writer_->append(t, values);
+    cycles_.row(values);
     if (progress_.due()) {
       const IntegratorStats st = integ_->stats();
       progress_.draw(t, st.steps, st.last_step);
     }
+    if (until_settled_ > 0.0 && cycles_.at_cycle_end() &&
+        cycles_.measure().max_difference <= until_settled_)
+      throw EndRun();
   }
   ResultsWriter* writer() { return writer_.get(); }
 
@@ -47,6 +59,8 @@ class ResultsSink : public RowSink {
   ResultsWriter::Options opt_;
   const Stop& stop_;
   Progress& progress_;
+  CycleTracker& cycles_;
+  double until_settled_;
   const Integrator* integ_ = nullptr;
   std::unique_ptr<ResultsWriter> writer_;
 };
@@ -98,19 +112,48 @@ std::string earlier_results(const std::filesystem::path& dir) {
   return s;
 }
 
+// The period and rows per period of a run's settledness (no rows: why not).
+Settledness settledness_plan(const Scene& scene, const FolderOptions& opt) {
+  Settledness s;
+  std::optional<ScenePeriod> per;
+  if (!opt.period.empty())
+    per = scene_period(scene, opt.period);
+  else
+    per = natural_period(scene, s.why_not);
+  if (!per) return s;
+  s.period_s = per->seconds;
+  s.period_deg = per->degrees;
+  s.rows_per_period = rows_per_period(scene.output.grid == "crank-angle", scene.output.step,
+                                      per->seconds, per->degrees, s.why_not);
+  return s;
+}
+
+// The warning of a run whose last two cycles differ by more than the tolerance,
+// or that holds too few cycles to tell (a run with no period says nothing).
+void warn_unsettled(const Settledness& s, const FolderOptions& opt) {
+  if (s.measured && !s.settled()) {
+    std::cerr << opt.log_prefix << ": warning: not settled: the last cycle ("
+              << format_number(s.period_s) << " s) differs from the one before by "
+              << format_number(s.max_difference) << " in '" << s.worst_channel << "' (tolerance "
+              << format_number(s.tolerance)
+              << "); run longer (--until-settled TOL) or find the steady cycle with evas "
+                 "periodic\n";
+  } else if (!s.measured && s.rows_per_period > 0 && !opt.quiet) {
+    std::cerr << opt.log_prefix << ": note: whether the run settled is not known: " << s.why_not
+              << " (summary.json, settledness)\n";
+  }
+}
+
 }  // namespace
 
-FolderResult run_into_folder(const Scene& scene, double t_end, const IntegratorSettings& settings,
-                             const FolderOptions& opt) {
-  const std::unique_ptr<Integrator> integ = make_integrator(settings.name);
-  SceneRun run(scene, t_end);
+std::unique_ptr<RunLock> open_run_folder(const FolderOptions& opt) {
   std::error_code ec;
   std::filesystem::create_directories(opt.dir, ec);
   if (ec)
     throw InputError(opt.dir.string() + ": cannot create the output directory: " + ec.message());
   // One run per folder: refuse before anything in it is touched.
-  const RunLock lock(opt.dir);
-  if (!lock.note().empty()) std::cerr << opt.log_prefix << ": warning: " << lock.note() << "\n";
+  auto lock = std::make_unique<RunLock>(opt.dir);
+  if (!lock->note().empty()) std::cerr << opt.log_prefix << ": warning: " << lock->note() << "\n";
   // An earlier run's results are never replaced silently (docs/errors.md).
   if (const std::string earlier = earlier_results(opt.dir); !earlier.empty()) {
     if (!opt.overwrite)
@@ -129,6 +172,15 @@ FolderResult run_into_folder(const Scene& scene, double t_end, const IntegratorS
       std::cerr << opt.log_prefix << ": replacing the earlier results in " << opt.dir.string()
                 << " (" << earlier << ", --overwrite)\n";
   }
+  return lock;
+}
+
+FolderResult run_into_folder(const Scene& scene, double t_end, const IntegratorSettings& settings,
+                             const FolderOptions& opt) {
+  const std::unique_ptr<Integrator> integ = make_integrator(settings.name);
+  SceneRun run(scene, t_end);
+  const Settledness plan = settledness_plan(scene, opt);  // may refuse --period
+  const std::unique_ptr<RunLock> lock = open_run_folder(opt);
   const Stop stop(opt.max_wall);  // signals from here on end the run in order
 
   FolderResult r;
@@ -138,7 +190,8 @@ FolderResult run_into_folder(const Scene& scene, double t_end, const IntegratorS
   wopt.integrator = settings.name;
   wopt.grid = scene.output.grid;
   Progress progress(opt.quiet, scene.t_start, t_end);
-  ResultsSink sink(r.results, wopt, stop, progress);
+  CycleTracker cycles(plan.rows_per_period, plan.why_not);
+  ResultsSink sink(r.results, wopt, stop, progress, cycles, opt.until_settled);
   if (!opt.quiet)
     std::cerr << opt.log_prefix << ": scene '" << scene.name << "', "
               << scene.model->bodies().size() << " bodies, " << run.system().size()
@@ -180,6 +233,13 @@ FolderResult run_into_folder(const Scene& scene, double t_end, const IntegratorS
     sum.channels = writer->channels();
     sum.channel_summary = writer->summary();
   }
+  r.settledness = cycles.measure();
+  r.settledness.period_s = plan.period_s;
+  r.settledness.period_deg = plan.period_deg;
+  r.settledness.tolerance = opt.until_settled > 0.0 ? opt.until_settled : opt.settle_tol;
+  if (r.settledness.why_not.empty()) r.settledness.why_not = plan.why_not;
+  sum.extra.emplace_back("settledness", settledness_json(r.settledness, "  "));
+  warn_unsettled(r.settledness, opt);
   r.summary = (opt.dir / "summary.json").string();
   write_after(r, opt.log_prefix, [&] { write_summary_json(r.summary, sum); });
   if (opt.csv) {

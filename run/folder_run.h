@@ -6,10 +6,13 @@
 #pragma once
 
 #include <filesystem>
+#include <memory>
 #include <string>
 
+#include "io/run_lock.h"
 #include "io/scene.h"
 #include "run/run.h"
+#include "run/settledness.h"
 
 namespace evas::run {
 
@@ -21,6 +24,15 @@ struct FolderOptions {
   /// Replace an earlier run's results in `dir`; without it such a folder is refused.
   bool overwrite = false;
   std::string log_prefix = "evas run";  ///< of the lines on stderr
+  /// The period whose last two cycles are compared (run/period.h): "" the
+  /// scene's own, else as --period gives it ("720deg", "0.04s").
+  std::string period;
+  /// Settled when the last two cycles differ by at most this (run/settledness.h);
+  /// a run that has not settled is warned of.
+  double settle_tol = 1e-3;
+  /// > 0: end the run, completed, at the first cycle end where the last two
+  /// cycles differ by at most this (--until-settled); t_end is then the limit.
+  double until_settled = 0.0;
 };
 
 struct FolderResult {
@@ -28,7 +40,16 @@ struct FolderResult {
   std::string results, summary, csv;  ///< the files written ("" for csv when not asked)
   double t_reached = 0.0;             ///< last output time written
   long rows = 0;
+  Settledness settledness;  ///< the last two cycles compared (measured = false: why_not)
 };
+
+/// Makes `opt.dir` ready for a run's files: created, locked for this run
+/// (the lock is returned; held until it is destroyed) and, with
+/// `opt.overwrite`, emptied of an earlier run's results.h5, summary.json and
+/// results.csv. Throws InputError (nothing touched) when the folder cannot be
+/// made, another run holds it, or it holds earlier results without
+/// `opt.overwrite`.
+std::unique_ptr<RunLock> open_run_folder(const FolderOptions& opt);
 
 /// Runs `scene` to `t_end` with `settings` into `opt.dir`. Throws InputError
 /// (nothing written) for bad input: an empty output grid, a folder that

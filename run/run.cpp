@@ -168,6 +168,8 @@ Outcome SceneRun::perform(Integrator& integ, const IntegratorSettings& settings,
       check_finite(outputs, row, t, sys, q, v);
       sink.row(t, row.data());
     });
+  } catch (const EndRun&) {
+    // the sink ended the run early, as completed (e.g. --until-settled)
   } catch (...) {
     record_failure(out, std::current_exception());
   }

@@ -3,12 +3,21 @@
 // between its steps, to stop it on request or to show progress.
 #pragma once
 
+#include <exception>
 #include <vector>
 
 #include "integrators/integrator.h"
 #include "io/outputs.h"
 
 namespace evas::run {
+
+/// Thrown by a sink (from row() or between_steps()) to end a run as completed
+/// before its end time, e.g. when its last two cycles agree (evas run
+/// --until-settled): the outcome is "completed" and the rows so far are kept.
+class EndRun : public std::exception {
+ public:
+  const char* what() const noexcept override { return "the run ended before its end time"; }
+};
 
 class RowSink {
  public:

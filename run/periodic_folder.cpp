@@ -1,0 +1,205 @@
+// `evas periodic` into an output folder (periodic_folder.h).
+#include "run/periodic_folder.h"
+
+#include <cmath>
+#include <iostream>
+#include <sstream>
+
+#include "io/results.h"
+#include "io/text_escape.h"
+#include "run/stop.h"
+
+namespace evas::run {
+
+namespace {
+
+// Keeps the channel rows of the cycle being integrated; stops on a signal or
+// the wall-time limit; says each iteration's defect as it comes.
+class CycleRows : public CycleObserver {
+ public:
+  CycleRows(OutputSet& out, System& sys, const Stop& stop)
+      : out_(out), sys_(sys), stop_(stop), row_(static_cast<std::size_t>(out.size())) {}
+  void begin(int) override {
+    times_.clear();
+    values_.clear();
+  }
+  void state(double t, const Vec& q, const Vec& v) override {
+    if (stop_.due()) stop_.stop(t, 0.0);
+    out_.values(t, q.data(), v.data(), row_.data());
+    for (std::size_t c = 0; c < row_.size(); ++c)
+      if (!std::isfinite(row_[c]))
+        throw RunError("channel '" + out_.channels()[c].name + "' is not finite at " +
+                       sys_.describe_state(t, q.data(), v.data()));
+    times_.push_back(t);
+    values_.insert(values_.end(), row_.begin(), row_.end());
+  }
+  void between_steps(double t, double h) override {
+    if (stop_.due()) stop_.stop(t, h);
+  }
+  const std::vector<double>& times() const { return times_; }
+  const std::vector<double>& values() const { return values_; }
+
+ private:
+  OutputSet& out_;
+  System& sys_;
+  const Stop& stop_;
+  std::vector<double> row_;
+  std::vector<double> times_, values_;
+};
+
+}  // namespace
+
+std::string periodic_json(const PeriodicResult& r, const ScenePeriod& per,
+                          const PeriodicOptions& opt, const std::string& indent) {
+  std::ostringstream o;
+  const std::string in = indent + "  ", in2 = in + "  ";
+  o << "{\n";
+  o << in << "\"method\": " << json_string(to_text(opt.method)) << ",\n";
+  o << in << "\"converged\": " << (r.converged ? "true" : "false") << ",\n";
+  if (!r.converged) o << in << "\"reason\": " << json_string(r.message) << ",\n";
+  o << in << "\"period_s\": " << json_number(per.seconds) << ",\n";
+  o << in << "\"period_deg\": " << json_number(per.degrees) << ",\n";
+  o << in << "\"period_basis\": " << json_string(per.basis) << ",\n";
+  o << in << "\"tolerance\": " << json_number(opt.tol) << ",\n";
+  o << in << "\"defect_measure\": "
+    << json_string(
+           "max over the state (q, v) of |G(x)_i - x_i| / s_i, s_i the coordinate's "
+           "largest |value| over the cycle, at least 1e-4 of the largest of its kind")
+    << ",\n";
+  o << in << "\"cycle_integrations\": " << r.cycles << ",\n";
+  if (opt.method == PeriodicMethod::projected)
+    o << in << "\"slow_dimension\": " << r.slow_dimension << ",\n";
+  o << in << "\"wall_seconds\": " << json_number(r.wall) << ",\n";
+  o << in << "\"iterations\": [";
+  for (std::size_t k = 0; k < r.iterations.size(); ++k) {
+    const PeriodicIteration& it = r.iterations[k];
+    o << (k ? ",\n" : "\n") << in2 << "{\"cycles\": " << it.cycles
+      << ", \"step\": " << json_string(it.step) << ", \"defect\": " << json_number(it.defect)
+      << ", \"worst\": " << json_string(it.worst) << ", \"wall_seconds\": " << json_number(it.wall)
+      << "}";
+  }
+  o << "\n" << in << "],\n";
+  o << in << "\"floquet_source\": " << json_string(r.multiplier_source) << ",\n";
+  o << in << "\"floquet_multipliers\": [";
+  for (std::size_t k = 0; k < r.multipliers.size(); ++k) {
+    const FloquetMultiplier& f = r.multipliers[k];
+    o << (k ? ",\n" : "\n") << in2 << "{\"re\": " << json_number(f.mu.real())
+      << ", \"im\": " << json_number(f.mu.imag())
+      << ", \"modulus\": " << json_number(std::abs(f.mu)) << ", \"lives_in\": [";
+    for (std::size_t j = 0; j < f.lives_in.size(); ++j)
+      o << (j ? ", " : "") << json_string(f.lives_in[j]);
+    o << "]}";
+  }
+  o << (r.multipliers.empty() ? "]" : "\n" + in + "]");
+  o << ",\n" << in << "\"stable\": ";
+  if (r.multipliers.empty())
+    o << "null";
+  else
+    o << (std::abs(r.multipliers.front().mu) < 1.0 ? "true" : "false");
+  o << "\n" << indent << "}";
+  return o.str();
+}
+
+PeriodicFolderResult periodic_into_folder(const Scene& scene, const IntegratorSettings& settings,
+                                          const PeriodicOptions& popt, const std::string& period,
+                                          const FolderOptions& opt) {
+  PeriodicFolderResult r;
+  r.period = scene_period(scene, period);
+  const double t0 = scene.t_start, T = r.period.seconds;
+  make_integrator(settings.name);  // an unknown name is refused before the folder is touched
+  SceneRun run(scene, t0 + T);
+  std::vector<double> samples;
+  for (double t : run.outputs().times())
+    if (t < t0 + T * (1.0 - 1e-9)) samples.push_back(t);
+  const std::unique_ptr<RunLock> lock = open_run_folder(opt);
+  const Stop stop(opt.max_wall);
+  System& sys = run.system();
+  CycleRows rows(run.outputs(), sys, stop);
+  Vec q0, v0;
+  sys.initial_state(q0, v0);
+  if (!opt.quiet)
+    std::cerr << opt.log_prefix << ": scene '" << scene.name << "', " << sys.size()
+              << " modal coordinates, integrator " << settings.name << ", method "
+              << to_text(popt.method) << ", period " << format_number(T) << " s (" << r.period.basis
+              << ")\n";
+  std::string failure;
+  try {
+    r.periodic = find_periodic(sys, t0, T, q0, v0, settings, popt, samples, &rows);
+    if (!r.periodic.converged) {
+      failure = r.periodic.message;
+      r.exit_code = 2;
+    }
+  } catch (const InputError&) {
+    throw;
+  } catch (const Stopped& e) {
+    failure = e.what();
+    r.exit_code = e.exit_code();
+  } catch (const std::exception& e) {
+    failure = e.what();
+    r.exit_code = 2;
+  }
+  r.status = failure.empty() ? "completed" : "failed: " + failure;
+  if (!opt.quiet || r.exit_code)
+    for (const PeriodicIteration& it : r.periodic.iterations)
+      std::cerr << opt.log_prefix << ": cycle " << it.cycles << " (" << it.step << "): defect "
+                << format_number(it.defect) << " in " << it.worst << "\n";
+
+  RunSummary sum;
+  sum.scene = scene.name;
+  sum.scene_path = scene.path;
+  sum.integrator = settings.name;
+  sum.settings = settings;
+  sum.grid = scene.output.grid;
+  sum.t_start = t0;
+  sum.t_end = t0 + T;
+  sum.stats = r.periodic.stats;
+  sum.peak_memory_mb = process_peak_memory_mb();
+  if (r.exit_code == 0) {
+    // the converged cycle: the rows of the cycle integrated last
+    r.results = (opt.dir / "results.h5").string();
+    try {
+      ResultsWriter::Options wopt;
+      wopt.scene_text = scene.text;
+      wopt.integrator = settings.name;
+      wopt.grid = scene.output.grid;
+      ResultsWriter w(r.results, run.outputs().channels(), wopt);
+      const long width = run.outputs().size();
+      for (std::size_t k = 0; k < rows.times().size(); ++k)
+        w.append(rows.times()[k], rows.values().data() + static_cast<long>(k) * width);
+      w.finish(r.periodic.stats, "completed");
+      r.rows = w.rows_written();
+      sum.channels = w.channels();
+      sum.channel_summary = w.summary();
+      sum.t_reached = w.last_time_written();
+    } catch (const std::exception& e) {
+      r.exit_code = 2;
+      r.status = std::string("failed: ") + e.what();
+      std::cerr << opt.log_prefix << ": FAILED: " << e.what() << "\n";
+    }
+  } else {
+    std::cerr << opt.log_prefix << ": FAILED: " << failure
+              << " (no results file written; the iterations are in summary.json)\n";
+  }
+  sum.status = r.status;
+  sum.rows = r.rows;
+  sum.extra.emplace_back("periodic", periodic_json(r.periodic, r.period, popt, "  "));
+  r.summary = (opt.dir / "summary.json").string();
+  try {
+    write_summary_json(r.summary, sum);
+  } catch (const std::exception& e) {
+    std::cerr << opt.log_prefix << ": FAILED: " << e.what() << "\n";
+    if (r.exit_code == 0) r.exit_code = 2;
+  }
+  if (opt.csv && !r.results.empty() && r.exit_code == 0) {
+    r.csv = (opt.dir / "results.csv").string();
+    try {
+      export_csv(r.results, r.csv);
+    } catch (const std::exception& e) {
+      std::cerr << opt.log_prefix << ": FAILED: " << e.what() << "\n";
+      r.exit_code = 2;
+    }
+  }
+  return r;
+}
+
+}  // namespace evas::run
