@@ -28,6 +28,8 @@ demo: build
 	  --out $(DEMO_OUT)/study --quiet
 	@echo "work-precision diagram of the demo scene: $(DEMO_OUT)/study/study.png"
 	./validation/engine/run.sh $(BUILD) $(DEMO_OUT)/validation
+	./$(BUILD)/evas periodic validation/engine/engine.yaml --out $(DEMO_OUT)/periodic --overwrite --quiet
+	@echo "steady cycle of the engine's Case 1 (evas periodic): $(DEMO_OUT)/periodic/results.h5"
 	./scripts/figures.sh $(BUILD) $(DEMO_OUT)/validation/case1/results.h5 $(DEMO_OUT)/figures
 	@echo "figures of the engine (evas plot): $(DEMO_OUT)/figures"
 	./$(BUILD)/evas report $(DEMO_OUT)/validation/case1/results.h5 --out $(DEMO_OUT)/report \

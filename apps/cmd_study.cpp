@@ -415,7 +415,12 @@ int sweep(const std::vector<std::string>& args) {
       "default: the first selected channel")(
       "point", po::value<int>(), "run task INDEX only, into DIR/points (batch array jobs)")(
       "merge", "run nothing: build the sweep files from DIR/points")(
-      "resume", "continue an interrupted sweep in DIR: completed runs are kept");
+      "resume", "continue an interrupted sweep in DIR: completed runs are kept")(
+      "periodic", po::value<std::string>()->implicit_value("projected"),
+      "every point as its steady cycle (evas periodic, this method: projected, anderson, "
+      "fixed-point, newton), not a run from rest to --t-end (docs/periodic.md)")(
+      "periodic-tol", po::value<double>()->default_value(3e-4, "3e-4"),
+      "with --periodic: the periodicity defect at which a point's cycle is accepted");
   add_cases(opts);
   add_common(opts);
   po::variables_map vm;
@@ -427,6 +432,8 @@ int sweep(const std::vector<std::string>& args) {
   so.orders = parse_orders(vm["orders"].as<std::string>());
   so.max_order = vm["max-order"].as<double>();
   so.cycles = vm["cycles"].as<int>();
+  if (vm.count("periodic")) so.periodic = vm["periodic"].as<std::string>();
+  so.periodic_tol = vm["periodic-tol"].as<double>();
   if (vm.count("order-channels")) so.order_channels = vm["order-channels"].as<std::string>();
   if (vm.count("point")) {
     so.point = vm["point"].as<int>();

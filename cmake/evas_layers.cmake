@@ -21,7 +21,7 @@ set(EVAS_LAYERS
     "integrators:model dae solver"
     "post:model"
     "io:model bodies elements solver integrators"
-    "run:io integrators solver dae elements model"
+    "run:io integrators solver dae elements model post"
     "plot:model post io"
     "study:run io integrators solver dae elements model post plot")
 

@@ -14,6 +14,7 @@
 #include "plot/gnuplot.h"
 #include "plot/report_html.h"
 #include "plot/report_run.h"
+#include "post/cycle_difference.h"
 #include "post/order_spectrum.h"
 
 namespace evas {
@@ -51,6 +52,35 @@ class Drawer {
   ReportResult& out_;
 };
 
+// Whether the record's last two 720-deg cycles agree (post/cycle_difference.h,
+// the measure of evas run's summary), in words for the summary table.
+std::string settled_text(const Run& run) {
+  const Eigen::Index n = run.rows();
+  if (n < 2) return "not known (one row)";
+  const double step =
+      (run.at(n - 1, run.crank) - run.at(0, run.crank)) / static_cast<double>(n - 1);
+  std::string why;
+  const long per = rows_per_period(true, step, 0.0, kCycle, why);
+  if (per <= 0) return "not known: " + why;
+  if (n < 2 * per)
+    return "not known: the record holds fewer than two cycles of 720 deg to compare (one "
+           "periodic cycle of evas periodic is steady by construction)";
+  std::vector<Channel> ch;
+  for (std::size_t c = 0; c < run.d.names.size(); ++c)
+    ch.push_back({run.d.names[c], c < run.d.units.size() ? run.d.units[c] : ""});
+  const long w = static_cast<long>(ch.size());
+  std::vector<double> last(static_cast<std::size_t>(per * w)), prev(last.size());
+  for (long r = 0; r < per; ++r)
+    for (long c = 0; c < w; ++c) {
+      last[static_cast<std::size_t>(r * w + c)] = run.d.values(n - per + r, c);
+      prev[static_cast<std::size_t>(r * w + c)] = run.d.values(n - 2 * per + r, c);
+    }
+  const Settledness s = compare_cycles(ch, last.data(), prev.data(), per, w);
+  return std::string(s.max_difference <= 1e-3 ? "yes" : "no") + ": the last two cycles differ by " +
+         general(s.max_difference, 3) + " in " + s.worst_channel +
+         " (tolerance 1e-3; evas periodic gives the steady cycle)";
+}
+
 void summary_section(const Run& run, report::Page& page) {
   page.heading(2, "Run summary", "summary");
   const ResultsData& d = run.d;
@@ -74,6 +104,7 @@ void summary_section(const Run& run, report::Page& page) {
       {"analysed", run.span_text() + ", from t = " + general(t0) + " s"},
       {"channels", std::to_string(d.names.size())},
       {"journal bearings", listing(run.bearings)}};
+  rows.push_back({"settled", settled_text(run)});
   for (auto& r : summary_rows(run.path)) rows.push_back(r);
   page.table({"item", "value"}, rows);
   if (!d.status.empty() && d.status != "completed")

@@ -80,7 +80,11 @@ Run read_run(const std::string& path, int cycles) {
         std::to_string(run.d.time.size()) + " rows of " + std::to_string(run.d.names.size()) +
         " channels (" + listing(run.d.names) + "), journal bearings: " + listing(run.bearings));
   const Eigen::Index n = run.rows();
-  const double span = run.at(n - 1, run.crank) - run.at(0, run.crank);
+  // n rows at a uniform step cover n steps of crank angle: the 720 rows 0 ..
+  // 719 deg of a periodic cycle (evas periodic) are one whole cycle, and a
+  // run's 0 .. 4320 deg six
+  const double last_span = run.at(n - 1, run.crank) - run.at(0, run.crank);
+  const double span = n > 1 ? last_span * static_cast<double>(n) / static_cast<double>(n - 1) : 0.0;
   run.whole_cycles = static_cast<int>(std::floor(span / kCycle + 1e-9));
   if (cycles > run.whole_cycles)
     throw InputError("--cycles " + std::to_string(cycles) + ": " + path + " covers " +

@@ -396,7 +396,7 @@ PeriodicResult Solver::solve(const Vec& q0, const Vec& v0) {
         const Vec z = L_ * r;
         const Mat I = Mat::Identity(pdim, pdim);
         // (I - H)^+ H z: directions whose multiplier is 1 to within 1e-3 (a
-        // coordinate that the averaged linearization leaves free, e.g. a
+        // coordinate that the linearization leaves free, e.g. a
         // journal floating axially in its thrust bearing's gap) are left to
         // the fixed point
         Eigen::JacobiSVD<Mat> svd(I - H_, Eigen::ComputeFullU | Eigen::ComputeFullV);
@@ -478,7 +478,10 @@ PeriodicResult Solver::solve(const Vec& q0, const Vec& v0) {
                ? std::string()
                : " lives in " + res.multipliers.front().lives_in.front());
   }
-  if (opt_.difference_floquet && res.converged) monodromy_by_differences(res, x, gx);
+  // newton's multipliers are the monodromy's, also when the start was periodic
+  if (res.converged && (opt_.difference_floquet ||
+                        (opt_.method == PeriodicMethod::newton && res.multipliers.empty())))
+    monodromy_by_differences(res, x, gx);
   res.q = x.head(n_);
   res.v = x.tail(n_);
   res.cycles = cycles_;

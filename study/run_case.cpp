@@ -1,7 +1,11 @@
 // One run of a study case (run_case.h).
 #include "study/run_case.h"
 
+#include <cmath>
+
 #include "io/outputs.h"
+#include "run/period.h"
+#include "run/periodic.h"
 #include "run/run.h"
 #include "solver/system.h"
 #include "study/report.h"
@@ -109,6 +113,90 @@ RunData run_case(const SceneSource& src, const IntegratorSettings& settings,
   d.y.resize(nr, nc);
   for (long r = 0; r < nr; ++r)
     for (long c = 0; c < nc; ++c) d.y(r, c) = rows[static_cast<std::size_t>(r * nc + c)];
+  return d;
+}
+
+namespace {
+
+// The chosen channels of the cycle being integrated (each cycle starts anew).
+class PeriodicRows : public run::CycleObserver {
+ public:
+  PeriodicRows(OutputSet& out, const std::vector<int>& channels, const std::function<bool()>& stop)
+      : out_(out), channels_(channels), stop_(stop), row_(static_cast<std::size_t>(out.size())) {
+    for (int i = 0; i < out.size(); ++i)
+      if (out.channels()[static_cast<std::size_t>(i)].name == "crank_angle") crank_ = i;
+  }
+  void begin(int) override {
+    time_.clear();
+    crank_values_.clear();
+    rows_.clear();
+  }
+  void state(double t, const Vec& q, const Vec& v) override {
+    out_.values(t, q.data(), v.data(), row_.data());
+    time_.push_back(t);
+    if (crank_ >= 0) crank_values_.push_back(row_[static_cast<std::size_t>(crank_)]);
+    for (int c : channels_) {
+      const double y = row_[static_cast<std::size_t>(c)];
+      if (!std::isfinite(y))
+        throw RunError("channel '" + out_.channels()[static_cast<std::size_t>(c)].name +
+                       "' is not finite at t = " + std::to_string(t) + " s");
+      rows_.push_back(y);
+    }
+  }
+  void between_steps(double t, double) override {
+    if (stop_ && stop_()) throw RunError("interrupted at t = " + std::to_string(t) + " s");
+  }
+  std::vector<double> time_, crank_values_, rows_;
+
+ private:
+  OutputSet& out_;
+  const std::vector<int>& channels_;
+  const std::function<bool()>& stop_;
+  std::vector<double> row_;
+  int crank_ = -1;
+};
+
+}  // namespace
+
+RunData run_periodic_case(const SceneSource& src, const IntegratorSettings& settings,
+                          const std::vector<int>& channels, const std::string& method, double tol,
+                          const std::function<bool()>& stop) {
+  RunData d;
+  try {
+    Scene scene = src.parse();
+    const run::ScenePeriod per = run::scene_period(scene, "");
+    const double t0 = scene.t_start, T = per.seconds;
+    run::SceneRun sr(scene, t0 + T);
+    std::vector<double> samples;
+    for (double t : sr.outputs().times())
+      if (t < t0 + T * (1.0 - 1e-9)) samples.push_back(t);
+    PeriodicRows rows(sr.outputs(), channels, stop);
+    Vec q0, v0;
+    sr.system().initial_state(q0, v0);
+    run::PeriodicOptions po;
+    po.method = run::periodic_method(method);
+    po.tol = tol;
+    const run::PeriodicResult r =
+        run::find_periodic(sr.system(), t0, T, q0, v0, settings, po, samples, &rows);
+    d.stats = r.stats;
+    d.wall = r.wall;
+    if (!r.converged) {
+      d.status = CaseStatus::failed;
+      d.message = r.message;
+    } else {
+      d.status = CaseStatus::completed;
+      d.time = rows.time_;
+      d.crank = rows.crank_values_;
+      const long nr = static_cast<long>(d.time.size()), nc = static_cast<long>(channels.size());
+      d.y.resize(nr, nc);
+      for (long i = 0; i < nr; ++i)
+        for (long c = 0; c < nc; ++c) d.y(i, c) = rows.rows_[static_cast<std::size_t>(i * nc + c)];
+    }
+  } catch (const std::exception& e) {
+    d.status = CaseStatus::failed;
+    d.message = e.what();
+  }
+  if (d.y.rows() != d.rows()) d.y.resize(d.rows(), static_cast<long>(channels.size()));
   return d;
 }
 

@@ -61,6 +61,17 @@ RunData run_case(const SceneSource& src, const IntegratorSettings& settings,
                  const std::vector<int>& channels, const RowCheck& check = nullptr,
                  const std::function<bool()>& stop = nullptr);
 
+/// The periodic cycle of the scene (run/periodic.h, `method` by its name,
+/// defect tolerance `tol`, the scene's own period) with `settings` as the cycle
+/// map: the rows of the converged cycle (crank angle 0 .. 719 deg on the
+/// engine's grid), its statistics summed over every cycle integrated and the
+/// wall time of the whole search. Not converged: failed, with the defect and
+/// the slowest multiplier in the message, and no rows. Never throws for a
+/// failure of the run itself.
+RunData run_periodic_case(const SceneSource& src, const IntegratorSettings& settings,
+                          const std::vector<int>& channels, const std::string& method, double tol,
+                          const std::function<bool()>& stop = nullptr);
+
 /// run_case `repeats` times (stopping at the first failure); the wall time is
 /// the minimum over the runs, data and statistics are those of the last run.
 /// `stop` (may be empty) is asked after every step and before each repeat.

@@ -12,6 +12,7 @@
 #include "integrators/settings.h"
 #include "io/run_lock.h"
 #include "plot/gnuplot_process.h"
+#include "run/periodic.h"
 #include "study/report.h"
 #include "study/sweep_detail.h"
 
@@ -91,6 +92,12 @@ SweepResult sweep(const Options& opt, const SweepOptions& so) {
   if (!(so.max_order > 0.0) || so.max_order > 1000.0)
     throw InputError("--max-order must be in (0, 1000]");
   if (so.cycles < 1) throw InputError("--cycles must be >= 1");
+  if (!so.periodic.empty()) {
+    run::periodic_method(so.periodic);  // an unknown method is refused here
+    if (so.cycles != 1)
+      throw InputError("--periodic: a point is one steady cycle; --cycles must be 1");
+    if (!(so.periodic_tol > 0.0)) throw InputError("--periodic-tol must be positive");
+  }
   for (double o : so.orders)
     if (!(o >= 0.0) || o > so.max_order)
       throw InputError("--orders: " + gnum(o, 6) + " is not in [0, --max-order " +
@@ -175,6 +182,8 @@ SweepResult sweep(const Options& opt, const SweepOptions& so) {
       t.channels = idx;
       t.repeats = opt.repeats;
       t.max_wall = opt.max_wall;
+      t.periodic = so.periodic;
+      t.periodic_tol = so.periodic_tol;
       tasks.push_back(std::move(t));
       output_rows.push_back(rows);
       SweepTask st;
@@ -190,7 +199,10 @@ SweepResult sweep(const Options& opt, const SweepOptions& so) {
   res.info = make_info(s);
   res.setup_seconds = setup_seconds;
   res.check_seconds = check_seconds;
-  res.info.window = "last " + std::to_string(so.cycles) + " cycle(s) per spectrum";
+  res.info.window = so.periodic.empty()
+                        ? "last " + std::to_string(so.cycles) + " cycle(s) per spectrum"
+                        : "the periodic cycle of every point (evas periodic, " + so.periodic +
+                              ", defect " + gnum(so.periodic_tol, 3) + ")";
   const fs::path dir = s.out;
   auto key_of = [&](std::size_t k) {
     return task_key(res.keys, res.tasks[k].values,

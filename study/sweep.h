@@ -36,6 +36,11 @@ struct SweepOptions {
   int point = -1;           ///< >= 0: run this task only (into points/), no sweep files
   bool merge = false;       ///< run nothing: build the sweep files from points/
   bool resume = false;      ///< keep the completed tasks of points/, run the rest
+  /// "" every point a transient run to the scene's end; else every point the
+  /// periodic cycle by this method of evas periodic (run/periodic.h), defect
+  /// tolerance periodic_tol: the spectra are the steady cycle's
+  std::string periodic;
+  double periodic_tol = 3e-4;
 };
 
 struct SweepTask {

@@ -201,8 +201,10 @@ void write_sweep_tables(const Options& opt, SweepData& d) {
      << (std::isnan(res.coordinator_cpu_seconds)
              ? std::string()
              : "; processor time " + gnum(res.coordinator_cpu_seconds, 3) + " s")
-     << "\n- channels: " << res.info.channels.size() << "; order spectra over the last cycle(s) "
-     << "of each run, orders 0 to " << gnum(d.orders.back(), 4) << " in steps of 0.5\n\n"
+     << "\n- channels: " << res.info.channels.size() << "; order spectra over "
+     << (res.info.window.rfind("the periodic cycle", 0) == 0 ? res.info.window
+                                                             : "the last cycle(s) of each run")
+     << ", orders 0 to " << gnum(d.orders.back(), 4) << " in steps of 0.5\n\n"
      << "| task | ";
   for (const auto& k : res.keys) md << md_cell(k) << " | ";
   md << "case | status | mean speed [rpm] | wall [s] | steps |\n|---:|";

@@ -66,6 +66,7 @@ class Reader {
   void finish() const {
     if (pos_ != in_.size()) fail();
   }
+  bool at_end() const { return pos_ == in_.size(); }
 
  private:
   void need(std::size_t n) const {
@@ -93,7 +94,10 @@ RunData run_task(const TaskSpec& task, const std::function<bool()>& stop) {
     return timed_out;
   };
   RunData d;
-  if (task.limit.empty()) {
+  if (!task.periodic.empty()) {
+    d = run_periodic_case(task.src, task.settings, task.channels, task.periodic, task.periodic_tol,
+                          ask);
+  } else if (task.limit.empty()) {
     d = run_case_repeated(task.src, task.settings, task.channels, task.repeats, ask);
   } else {
     // A fixed step longer than two output intervals: the outputs between the
@@ -163,6 +167,12 @@ std::string pack_task(const TaskSpec& t) {
   for (const auto& n : t.limit_names) w.text(n);
   w.raw(t.limit_after);
   w.raw(t.growth);
+  // a periodic task only: a transient task's bytes (and fingerprint) are
+  // those it had before periodic tasks existed
+  if (!t.periodic.empty()) {
+    w.text(t.periodic);
+    w.raw(t.periodic_tol);
+  }
   return w.take();
 }
 
@@ -188,6 +198,10 @@ TaskSpec unpack_task(const std::string& bytes) {
   if (t.limit_names.size() != t.limit.size()) throw std::runtime_error("malformed task limits");
   t.limit_after = r.raw<double>();
   t.growth = r.raw<double>();
+  if (!r.at_end()) {
+    t.periodic = r.text();
+    t.periodic_tol = r.raw<double>();
+  }
   r.finish();
   return t;
 }

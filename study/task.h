@@ -25,6 +25,11 @@ struct TaskSpec {
   std::vector<double> limit;
   std::vector<std::string> limit_names;
   double limit_after = 0.0, growth = 0.0;
+  /// "" a transient run to the scene's end; else the periodic cycle by this
+  /// method of evas periodic (run/periodic.h), its defect tolerance
+  /// periodic_tol: the rows are one converged cycle (run_periodic_case).
+  std::string periodic;
+  double periodic_tol = 3e-4;
 };
 
 /// Runs the task (run_case_repeated; with a limit, one run_case with that

@@ -4,6 +4,7 @@
 // simulated orbit grows at half the spin speed. Helpers:
 // journal_bearing_support.h.
 #include "journal_bearing_support.h"
+#include "run/periodic.h"
 
 namespace {
 
@@ -86,9 +87,8 @@ struct Response {
 // Runs the rotor at speed om from e_eq + d0 (at rest in G) with IDA. spin_lof:
 // the rotor body rides on a spin LOF (paper's crankshaft set-up); otherwise the
 // body is on a fixed LOF and the bearings get the spin as journal_speed.
-Response run_rotor(const RotorCase& rc, double om, const V2& e_eq, const V2& d0, double t_end,
-                   double dt_out, bool spin_lof, double stop_amplitude = 1e300) {
-  Model model;
+// The rotor's model at speed om, started from e0 at rest in G (run_rotor).
+void build_rotor(Model& model, const RotorCase& rc, double om, const V2& e0, bool spin_lof) {
   model.gravity = Vec3(0.0, -rc.g, 0.0);
   auto body = rotor_body(rc);
   const Lof lof = spin_lof
@@ -109,11 +109,17 @@ Response run_rotor(const RotorCase& rc, double om, const V2& e_eq, const V2& d0,
   model.add_element(std::make_unique<JournalBearing>("jb2", std::vector<int>{b2, j2}, p));
   // Translation modes: u = q / sqrt(m) in L components (L = G at t = 0).
   const double sm = std::sqrt(rc.mass);
-  const V2 e0 = e_eq + d0;
   Body& B = model.bodies()[0];
   B.q0 = Vec3(sm * e0.x(), sm * e0.y(), 0.0);
   // At rest in G: on the spin LOF the modal velocity cancels the frame's rotation.
   if (spin_lof) B.v0 = -sm * om * Vec3::UnitZ().cross(Vec3(e0.x(), e0.y(), 0.0));
+}
+
+Response run_rotor(const RotorCase& rc, double om, const V2& e_eq, const V2& d0, double t_end,
+                   double dt_out, bool spin_lof, double stop_amplitude = 1e300) {
+  Model model;
+  build_rotor(model, rc, om, e_eq + d0, spin_lof);
+  const int j1 = 0, b1 = 2;  // markers j1, j2, b1, b2 in that order
   System sys(model);
   auto integ = make_integrator("ida");
   IntegratorSettings st;
@@ -242,6 +248,51 @@ TEST(JournalBearing, RigidRotorWhirl) {
     EXPECT_GT(w / om, 0.4);
     EXPECT_LT(w / om, 0.55);
   }
+}
+
+// The Floquet multipliers of the rotor's periodic state on a spin LOF (its
+// static equilibrium, turning in the frame: gravity turns once per
+// revolution) by evas periodic's shooting Newton: the largest modulus crosses 1
+// where the linearized threshold has the growth rate cross 0, and equals
+// exp(growth T) (a periodic change of coordinates leaves the multipliers of
+// the fixed frame's linear system, exp(lambda T)).
+TEST(JournalBearing, FloquetMultiplierCrossesTheUnitCircleAtTheWhirlOnset) {
+  RotorCase rc;
+  const double om_th = onset_speed(rc, 300.0, 3000.0);
+  IntegratorSettings st;
+  st.rtol = 1e-10;
+  st.atol = 1e-14;
+  std::vector<double> oms, mods;
+  for (double f : {0.9, 0.97, 1.03, 1.1}) {
+    const double om = f * om_th, T = 2 * M_PI / om;
+    const Linear l = linear_rotor(rc, om);
+    Model model;
+    build_rotor(model, rc, om, l.e_eq, true);
+    System sys(model);
+    Vec q0, v0;
+    sys.initial_state(q0, v0);
+    run::PeriodicOptions po;
+    po.method = run::PeriodicMethod::newton;
+    po.tol = 1e-8;
+    const run::PeriodicResult r = run::find_periodic(sys, 0.0, T, q0, v0, st, po);
+    ASSERT_TRUE(r.converged) << f << ": " << r.message;
+    // the largest multiplier but the axial translation's: the bearings hold
+    // the rotor in x and y only, and a free translation has multiplier 1
+    double mu = 0.0;
+    for (const auto& m : r.multipliers)
+      if (std::abs(m.mu - 1.0) > 1e-6) mu = std::max(mu, std::abs(m.mu));
+    ASSERT_GT(mu, 0.0);
+    std::printf("  om = %.1f (%.2f onset): largest |mu| %.6f, exp(growth T) %.6f\n", om, f, mu,
+                std::exp(l.growth * T));
+    EXPECT_NEAR(mu, std::exp(l.growth * T), 1e-4);
+    EXPECT_EQ(mu < 1.0, f < 1.0) << f;
+    oms.push_back(om);
+    mods.push_back(mu);
+  }
+  // the crossing of |mu| = 1 between the two nearest speeds, against the onset
+  const double om_cross = oms[1] + (1.0 - mods[1]) * (oms[2] - oms[1]) / (mods[2] - mods[1]);
+  std::printf("  |mu| = 1 at %.3f rad/s, linearized onset %.3f rad/s\n", om_cross, om_th);
+  EXPECT_NEAR(om_cross, om_th, 2e-3 * om_th);
 }
 
 // Largest p = 6 eta x (B - x) (W . u) / h^3 at the mid-plane over `points`

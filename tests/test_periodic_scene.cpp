@@ -15,6 +15,7 @@
 #include "run/period.h"
 #include "run/periodic_folder.h"
 #include "run/settledness.h"
+#include "study/task.h"
 
 namespace evas {
 namespace {
@@ -208,3 +209,43 @@ TEST(Settledness, ComparesCyclesModuloATurnAndFloorsStillChannels) {
 
 }  // namespace
 }  // namespace evas
+
+namespace evas::study {
+namespace {
+
+TEST(PeriodicSweepTask, PacksExactlyAndRunsOneSteadyCycle) {
+  TaskSpec t;
+  t.src.path = std::string(EVAS_SOURCE_DIR) + "/validation/engine/engine.yaml";
+  t.src.text = read_scene_text(t.src.path);
+  const Scene s = read_scene(t.src.path);
+  t.settings = s.integrator;
+  t.channels = {0, 1, 2};
+  // a transient task's bytes are those of before periodic tasks: no trailer
+  const std::string transient = pack_task(t);
+  t.periodic = "projected";
+  t.periodic_tol = 3e-4;
+  const std::string periodic = pack_task(t);
+  EXPECT_EQ(periodic.substr(0, transient.size()), transient);
+  EXPECT_GT(periodic.size(), transient.size());
+  const TaskSpec back = unpack_task(periodic);
+  EXPECT_EQ(back.periodic, "projected");
+  EXPECT_EQ(back.periodic_tol, 3e-4);
+  EXPECT_EQ(pack_task(back), periodic);
+  EXPECT_TRUE(unpack_task(transient).periodic.empty());
+  EXPECT_NE(task_fingerprint(t), task_fingerprint(unpack_task(transient)));
+  const RunData d = run_task(t);
+  ASSERT_EQ(d.status, CaseStatus::completed) << d.message;
+  ASSERT_EQ(d.rows(), 720);
+  EXPECT_NEAR(d.crank.front(), 0.0, 1e-9);
+  EXPECT_NEAR(d.crank.back(), 719.0, 1e-9);
+  EXPECT_EQ(d.y.cols(), 3);
+  // an unknown method fails the task with the names
+  t.periodic = "shooting";
+  const RunData bad = run_task(t);
+  EXPECT_EQ(bad.status, CaseStatus::failed);
+  EXPECT_NE(bad.message.find("projected, newton, anderson, fixed-point"), std::string::npos)
+      << bad.message;
+}
+
+}  // namespace
+}  // namespace evas::study
