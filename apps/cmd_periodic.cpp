@@ -55,15 +55,7 @@ int cmd_periodic(const std::vector<std::string>& args) {
       "projected: the slow subspace's Jacobian by differences of the cycle map along its p "
       "directions (p more cycles), not from the linearization");
   po::variables_map vm;
-  if (parse_args(args, opts, {"scene"}, vm)) return 0;
-  if (vm.count("help-settings")) {
-    std::cout << settings_reference();
-    return 0;
-  }
-  if (!vm.count("scene")) {
-    std::cerr << "evas periodic: missing SCENE file\n" << opts << "\n";
-    return 1;
-  }
+  if (const int code = parse_scene_command("periodic", args, opts, vm); code >= 0) return code;
   run::PeriodicOptions popt;
   popt.method = run::periodic_method(vm["method"].as<std::string>());
   popt.tol = vm["tol"].as<double>();

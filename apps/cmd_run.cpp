@@ -39,15 +39,7 @@ int cmd_run(const std::vector<std::string>& args) {
       "at most --max-cycles of them; replaces --t-end")(
       "max-cycles", po::value<int>(), "with --until-settled: the most cycles run (default 100)");
   po::variables_map vm;
-  if (parse_args(args, opts, {"scene"}, vm)) return 0;
-  if (vm.count("help-settings")) {
-    std::cout << settings_reference();
-    return 0;
-  }
-  if (!vm.count("scene")) {
-    std::cerr << "evas run: missing SCENE file\n" << opts << "\n";
-    return 1;
-  }
+  if (const int code = parse_scene_command("run", args, opts, vm); code >= 0) return code;
   const bool quiet = vm.count("quiet") > 0;
   Scene scene = scene_from_options("run", vm);
   IntegratorSettings& set = scene.integrator;

@@ -42,6 +42,20 @@ void check_folder_name(const Scene& scene) {
 
 }  // namespace
 
+int parse_scene_command(const std::string& command, const std::vector<std::string>& args,
+                        const po::options_description& opts, po::variables_map& vm) {
+  if (parse_args(args, opts, {"scene"}, vm)) return 0;
+  if (vm.count("help-settings")) {
+    std::cout << settings_reference();
+    return 0;
+  }
+  if (!vm.count("scene")) {
+    std::cerr << "evas " << command << ": missing SCENE file\n" << opts << "\n";
+    return 1;
+  }
+  return -1;
+}
+
 void add_scene_run_options(po::options_description& opts) {
   opts.add_options()("integrator", po::value<std::string>(),
                      ("integrator: " + builtin_integrator_list() + " or a loaded plug-in").c_str())(

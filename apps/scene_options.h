@@ -12,6 +12,11 @@
 
 namespace evas::cli {
 
+/// Parses the arguments of `evas COMMAND SCENE ...`: -1 to go on, else the
+/// exit code (0 after --help or --help-settings, 1 without SCENE).
+int parse_scene_command(const std::string& command, const std::vector<std::string>& args,
+                        const po::options_description& opts, po::variables_map& vm);
+
 /// Adds the shared options to `opts` (after --help, which each command adds).
 void add_scene_run_options(po::options_description& opts);
 

@@ -80,18 +80,23 @@ Run read_run(const std::string& path, int cycles) {
         std::to_string(run.d.time.size()) + " rows of " + std::to_string(run.d.names.size()) +
         " channels (" + listing(run.d.names) + "), journal bearings: " + listing(run.bearings));
   const Eigen::Index n = run.rows();
-  // n rows at a uniform step cover n steps of crank angle: the 720 rows 0 ..
-  // 719 deg of a periodic cycle (evas periodic) are one whole cycle, and a
-  // run's 0 .. 4320 deg six
-  const double last_span = run.at(n - 1, run.crank) - run.at(0, run.crank);
-  const double span = n > 1 ? last_span * static_cast<double>(n) / static_cast<double>(n - 1) : 0.0;
+  const double span = run.at(n - 1, run.crank) - run.at(0, run.crank);
   run.whole_cycles = static_cast<int>(std::floor(span / kCycle + 1e-9));
-  if (cycles > run.whole_cycles)
+  // One periodic cycle (evas periodic): 720 rows at 1 deg, 0 .. 719 deg, span
+  // one step short of 720 deg but n steps of it: the whole record is the cycle.
+  const bool one_periodic_cycle =
+      run.whole_cycles == 0 && n > 1 &&
+      span * static_cast<double>(n) / static_cast<double>(n - 1) >= kCycle - 1e-6;
+  if (cycles > run.whole_cycles && !(one_periodic_cycle && cycles <= 1))
     throw InputError("--cycles " + std::to_string(cycles) + ": " + path + " covers " +
                      fixed(span, 1) + " deg of crank angle, " + std::to_string(run.whole_cycles) +
                      " whole cycle(s) of 720 deg (give fewer, 0 for the whole record, or "
                      "run longer)");
   run.cycles = cycles >= 0 ? cycles : std::min(2, run.whole_cycles);
+  if (one_periodic_cycle) {
+    run.whole_cycles = 1;
+    run.cycles = 0;  // the whole record, which is the cycle
+  }
   if (run.cycles > 0) {
     const double end = run.at(n - 1, run.crank);
     Eigen::Index r = n - 1;

@@ -175,6 +175,18 @@ std::unique_ptr<RunLock> open_run_folder(const FolderOptions& opt) {
   return lock;
 }
 
+RunSummary summary_of(const Scene& scene, const IntegratorSettings& settings) {
+  RunSummary sum;
+  sum.scene = scene.name;
+  sum.scene_path = scene.path;
+  sum.integrator = settings.name;
+  sum.settings = settings;
+  sum.grid = scene.output.grid;
+  sum.t_start = scene.t_start;
+  sum.peak_memory_mb = process_peak_memory_mb();
+  return sum;
+}
+
 FolderResult run_into_folder(const Scene& scene, double t_end, const IntegratorSettings& settings,
                              const FolderOptions& opt) {
   const std::unique_ptr<Integrator> integ = make_integrator(settings.name);
@@ -214,20 +226,13 @@ FolderResult run_into_folder(const Scene& scene, double t_end, const IntegratorS
   if (writer)
     write_after(r, opt.log_prefix,
                 [&] { writer->finish(r.outcome.stats, r.outcome.status_text()); });
-  RunSummary sum;
-  sum.scene = scene.name;
-  sum.scene_path = scene.path;
-  sum.integrator = settings.name;
-  sum.settings = settings;
-  sum.grid = scene.output.grid;
+  RunSummary sum = summary_of(scene, settings);
   sum.status = r.outcome.status_text();
-  sum.t_start = scene.t_start;
   sum.t_end = t_end;
   r.rows = writer ? writer->rows_written() : 0;
   r.t_reached = r.rows > 0 ? writer->last_time_written() : scene.t_start;
   sum.t_reached = r.t_reached;
   sum.rows = r.rows;
-  sum.peak_memory_mb = process_peak_memory_mb();
   sum.stats = r.outcome.stats;
   if (writer) {
     sum.channels = writer->channels();

@@ -9,6 +9,7 @@
 #include <memory>
 #include <string>
 
+#include "io/results.h"
 #include "io/run_lock.h"
 #include "io/scene.h"
 #include "run/run.h"
@@ -50,6 +51,11 @@ struct FolderResult {
 /// made, another run holds it, or it holds earlier results without
 /// `opt.overwrite`.
 std::unique_ptr<RunLock> open_run_folder(const FolderOptions& opt);
+
+/// The summary's fields of a run of `scene` with `settings` that do not
+/// depend on how it ended: scene name and path, integrator, settings, grid,
+/// start time and the peak memory so far.
+RunSummary summary_of(const Scene& scene, const IntegratorSettings& settings);
 
 /// Runs `scene` to `t_end` with `settings` into `opt.dir`. Throws InputError
 /// (nothing written) for bad input: an empty output grid, a folder that

@@ -144,16 +144,9 @@ PeriodicFolderResult periodic_into_folder(const Scene& scene, const IntegratorSe
       std::cerr << opt.log_prefix << ": cycle " << it.cycles << " (" << it.step << "): defect "
                 << format_number(it.defect) << " in " << it.worst << "\n";
 
-  RunSummary sum;
-  sum.scene = scene.name;
-  sum.scene_path = scene.path;
-  sum.integrator = settings.name;
-  sum.settings = settings;
-  sum.grid = scene.output.grid;
-  sum.t_start = t0;
+  RunSummary sum = summary_of(scene, settings);
   sum.t_end = t0 + T;
   sum.stats = r.periodic.stats;
-  sum.peak_memory_mb = process_peak_memory_mb();
   if (r.exit_code == 0) {
     // the converged cycle: the rows of the cycle integrated last
     r.results = (opt.dir / "results.h5").string();

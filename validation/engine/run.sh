@@ -30,16 +30,22 @@ case5=$tmp/case5.yaml
 case6=$tmp/case6.yaml
 case7=$tmp/case7.yaml
 
+# spectra DIR CYCLES: the order spectrum of every main-bearing load of DIR's
+# results over its last CYCLES cycles, as DIR/spectrum_main<b>.<fx|fy>.csv
+spectra() {
+  for b in 1 2 3 4 5; do
+    for ch in fx fy; do
+      "$evas" spectrum "$1/results.h5" --channel main$b.$ch --max-order 12 --cycles "$2" \
+        --csv "$1/spectrum_main$b.$ch.csv" > /dev/null
+    done
+  done
+}
+
 for c in 1 2 3 4 5 6 7; do
   echo "== case $c"
   eval scene=\$case$c
   /usr/bin/time -f "case $c: %e s wall, %M kB peak" "$evas" run "$scene" --out "$out/case$c" --csv --overwrite
-  for b in 1 2 3 4 5; do
-    for ch in fx fy; do
-      "$evas" spectrum "$out/case$c/results.h5" --channel main$b.$ch --max-order 12 --cycles 2 \
-        --csv "$out/case$c/spectrum_main$b.$ch.csv" > /dev/null
-    done
-  done
+  spectra "$out/case$c" 2
 done
 
 # Order table: amplitude [kN] of each main bearing's load, Case 1 / Case 2.
@@ -63,6 +69,42 @@ orders="0.5 1 1.5 2 3 4 6"
   done
 } > "$out/orders.md"
 echo "order table (kN, Case 1 / Case 2): $out/orders.md"
+
+# The steady cycles of Case 1 and Case 2 (evas periodic, docs/periodic.md):
+# the same order table on them, and the change from the six-cycle runs' last
+# two cycles in % of the channel's largest order.
+for c in 1 2; do
+  eval scene=\$case$c
+  /usr/bin/time -f "case $c, steady cycle: %e s wall" "$evas" periodic "$scene" \
+    --out "$out/case$c-steady" --csv --overwrite --quiet
+  spectra "$out/case$c-steady" 1
+done
+{
+  printf "| channel |"
+  for o in $orders; do printf " order %s |" "$o"; done
+  printf "\n|---|"
+  for o in $orders; do printf "%s" "---|"; done
+  printf "\n"
+  for b in 1 2 3 4 5; do
+    for ch in fx fy; do
+      printf "| main%s.%s |" "$b" "$ch"
+      for o in $orders; do
+        for c in 1 2; do
+          st=$out/case$c-steady/spectrum_main$b.$ch.csv
+          tr=$out/case$c/spectrum_main$b.$ch.csv
+          peak=$(awk -F, 'NR > 1 && $2 > m {m = $2} END {print m}' "$tr")
+          a=$(awk -F, -v o="$o" 'NR > 1 && $1 == o {print $2}' "$st")
+          t=$(awk -F, -v o="$o" 'NR > 1 && $1 == o {print $2}' "$tr")
+          awk -v a="$a" -v t="$t" -v p="$peak" -v c="$c" \
+            'BEGIN {printf "%s%.1f (%+.1f %%)%s", (c == 1 ? " " : " / "), a / 1000,
+                    100 * (a - t) / p, (c == 2 ? " |" : "")}'
+        done
+      done
+      printf "\n"
+    done
+  done
+} > "$out/orders_steady.md"
+echo "order table on the steady cycles (kN, Case 1 / Case 2, change from the runs): $out/orders_steady.md"
 
 # Case 2 three ways: stiff mounts, spherical joints, fixed joints at the pads;
 # amplitudes [kN] and, for the joints, the difference to the stiff mounts in %
