@@ -40,6 +40,9 @@ int cmd_periodic(const std::vector<std::string>& args) {
       "slow", po::value<double>()->default_value(0.02, "0.02"),
       "projected: multipliers of modulus >= this are solved by Newton")(
       "depth", po::value<int>()->default_value(5), "anderson: earlier iterates mixed")(
+      "coarse", po::value<double>()->default_value(10.0, "10"),
+      "the first cycles at rtol and atol times this, until the defect is below 30 x --tol (1: "
+      "none); the cycle accepted is at the integrator's own tolerances")(
       "no-secant", "projected: keep the first Jacobian (no Broyden updates)")(
       "floquet", po::value<std::string>()->default_value("estimate"),
       "estimate: the Floquet multipliers the method has at hand (newton's monodromy; the "
@@ -66,6 +69,9 @@ int cmd_periodic(const std::vector<std::string>& args) {
   popt.slow = vm["slow"].as<double>();
   if (!(popt.slow > 0.0 && popt.slow < 1.0))
     throw InputError("--slow must be between 0 and 1 (a multiplier's modulus)");
+  popt.coarse = vm["coarse"].as<double>();
+  if (!(popt.coarse >= 1.0) || !std::isfinite(popt.coarse))
+    throw InputError("--coarse must be 1 or more (a factor on rtol and atol)");
   popt.depth = vm["depth"].as<int>();
   if (popt.depth < 1) throw InputError("--depth must be at least 1");
   popt.secant = vm.count("no-secant") == 0;

@@ -88,6 +88,7 @@ class Solver {
   Problem& p_;
   double t0_, T_;
   IntegratorSettings set_;
+  bool coarse_ = false;  // the cycles are integrated at the coarse tolerances
   PeriodicOptions opt_;
   std::vector<double> samples_;
   CycleObserver* obs_;
@@ -127,7 +128,12 @@ Vec Solver::cycle(const Vec& x, bool main) {
   try {
     settle_quasi_static(p_, t0_, q, v);
     start_internal_states(p_, t0_, q, v);
-    integ->init(p_, t0_, q, v, set_);
+    IntegratorSettings s = set_;
+    if (coarse_) {
+      s.rtol *= opt_.coarse;
+      s.atol *= opt_.coarse;
+    }
+    integ->init(p_, t0_, q, v, s);
     if (obs_) integ->set_step_monitor([this](double t, double h) { obs_->between_steps(t, h); });
     if (main && !samples_.empty() && std::abs(samples_.front() - t0_) <= 1e-12 * T_)
       keep(t0_, q, v);
@@ -309,21 +315,30 @@ PeriodicResult Solver::solve(const Vec& q0, const Vec& v0) {
   if (!(opt_.tol > 0.0)) throw InputError("the periodicity tolerance must be positive");
   if (opt_.max_cycles < 2) throw InputError("at least two cycles are needed (max cycles)");
   const int N = 2 * n_;
+  coarse_ = opt_.coarse > 1.0;
   Vec x = join(q0, v0);
   Vec gx = cycle(x, true);
   update_scale();
   Vec r = gx - x;
-  record(res, "start", r);
+  record(res, coarse_ ? "start (coarse)" : "start", r);
   // Anderson's history
   std::vector<Vec> hist_g, hist_f;
   // the previous iterate, for the secant update
   Vec x_prev, g_prev;
   bool have_lin = false;
+  bool mixed = false;  // gx is the first at the settings' tolerances, the history's coarse
   while (true) {
     int worst = 0;
-    if (defect(r, worst) <= opt_.tol) {
+    const double d = defect(r, worst);
+    if (!coarse_ && d <= opt_.tol) {
       res.converged = true;
       break;
+    }
+    bool to_fine = false;
+    if (coarse_ && d <= 30.0 * opt_.tol) {
+      // near enough: the next cycles at the settings' own tolerances
+      coarse_ = false;
+      to_fine = true;
     }
     if (cycles_ >= opt_.max_cycles) break;
     std::string step;
@@ -334,6 +349,10 @@ PeriodicResult Solver::solve(const Vec& q0, const Vec& v0) {
         step = "fixed point";
         break;
       case PeriodicMethod::anderson: {
+        if (mixed) {
+          hist_g.clear();
+          hist_f.clear();
+        }
         hist_g.push_back(gx);
         hist_f.push_back(r.cwiseQuotient(scale_));
         if (static_cast<int>(hist_g.size()) > opt_.depth + 1) {
@@ -379,7 +398,8 @@ PeriodicResult Solver::solve(const Vec& q0, const Vec& v0) {
             }
           }
           have_lin = true;
-        } else if (opt_.secant && H_.size() > 0) {
+        } else if (opt_.secant && H_.size() > 0 && !mixed) {
+          // (not across the change of tolerances: that difference is no slope)
           const Vec dz = L_ * (x - x_prev);
           const Vec dg = L_ * (gx - g_prev);
           const double dd = dz.squaredNorm();
@@ -408,6 +428,8 @@ PeriodicResult Solver::solve(const Vec& q0, const Vec& v0) {
       }
     }
     if (xn.size() == 0) break;  // the method cannot go on (message set)
+    if (coarse_) step += " (coarse)";
+    mixed = to_fine;
     // A step that leaves the states the model takes (a journal outside its
     // clearance) is halved towards G(x), a state the integrator reached, up
     // to four times.
@@ -484,6 +506,9 @@ PeriodicResult Solver::solve(const Vec& q0, const Vec& v0) {
     monodromy_by_differences(res, x, gx);
   res.q = x.head(n_);
   res.v = x.tail(n_);
+  res.sample_t = st_;
+  res.sample_q = sq_;
+  res.sample_v = sv_;
   res.cycles = cycles_;
   res.stats = stats_;
   res.wall = std::chrono::duration<double>(Clock::now() - clock0_).count();

@@ -55,6 +55,10 @@ struct PeriodicOptions {
   /// After convergence, the Floquet multipliers from the monodromy matrix by
   /// differences at the periodic state (2n more cycles), not the estimates
   bool difference_floquet = false;
+  /// The first cycles at rtol and atol times this (1: none), until a cycle's
+  /// defect is below 30 x tol; the cycle accepted is always at the settings'
+  /// own tolerances (a fixed-step method's steps are not changed).
+  double coarse = 10.0;
   int steps = 180;  ///< stepped: implicit Euler steps over the cycle (at most one per sample)
 };
 
@@ -82,6 +86,10 @@ struct PeriodicResult {
   int slow_dimension = 0;                      ///< projected: p
   IntegratorStats stats;                       ///< summed over every cycle
   double wall = 0.0;
+  /// The cycle integrated last from (q, v): its states at the sample times
+  /// (the rows of the periodic cycle, once converged).
+  std::vector<double> sample_t;
+  std::vector<Vec> sample_q, sample_v;
 };
 
 /// Sees the cycles the method integrates from its iterates (not newton's

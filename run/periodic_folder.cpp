@@ -13,39 +13,36 @@ namespace evas::run {
 
 namespace {
 
-// Keeps the channel rows of the cycle being integrated; stops on a signal or
-// the wall-time limit; says each iteration's defect as it comes.
-class CycleRows : public CycleObserver {
+// Stops the search on a signal or the wall-time limit.
+class StopWatch : public CycleObserver {
  public:
-  CycleRows(OutputSet& out, System& sys, const Stop& stop)
-      : out_(out), sys_(sys), stop_(stop), row_(static_cast<std::size_t>(out.size())) {}
-  void begin(int) override {
-    times_.clear();
-    values_.clear();
-  }
-  void state(double t, const Vec& q, const Vec& v) override {
+  explicit StopWatch(const Stop& stop) : stop_(stop) {}
+  void state(double t, const Vec&, const Vec&) override {
     if (stop_.due()) stop_.stop(t, 0.0);
-    out_.values(t, q.data(), v.data(), row_.data());
-    for (std::size_t c = 0; c < row_.size(); ++c)
-      if (!std::isfinite(row_[c]))
-        throw RunError("channel '" + out_.channels()[c].name + "' is not finite at " +
-                       sys_.describe_state(t, q.data(), v.data()));
-    times_.push_back(t);
-    values_.insert(values_.end(), row_.begin(), row_.end());
   }
   void between_steps(double t, double h) override {
     if (stop_.due()) stop_.stop(t, h);
   }
-  const std::vector<double>& times() const { return times_; }
-  const std::vector<double>& values() const { return values_; }
 
  private:
-  OutputSet& out_;
-  System& sys_;
   const Stop& stop_;
-  std::vector<double> row_;
-  std::vector<double> times_, values_;
 };
+
+// The channel rows of the converged cycle, from its sampled states (the
+// channels of the cycles before it are never evaluated).
+void write_rows(const PeriodicResult& p, OutputSet& out, const System& sys, ResultsWriter& w) {
+  std::vector<double> row(static_cast<std::size_t>(out.size()));
+  for (std::size_t k = 0; k < p.sample_t.size(); ++k) {
+    const double t = p.sample_t[k];
+    const Vec &q = p.sample_q[k], &v = p.sample_v[k];
+    out.values(t, q.data(), v.data(), row.data());
+    for (std::size_t c = 0; c < row.size(); ++c)
+      if (!std::isfinite(row[c]))
+        throw RunError("channel '" + out.channels()[c].name + "' is not finite at " +
+                       sys.describe_state(t, q.data(), v.data()));
+    w.append(t, row.data());
+  }
+}
 
 }  // namespace
 
@@ -114,7 +111,7 @@ PeriodicFolderResult periodic_into_folder(const Scene& scene, const IntegratorSe
   const std::unique_ptr<RunLock> lock = open_run_folder(opt);
   const Stop stop(opt.max_wall);
   System& sys = run.system();
-  CycleRows rows(run.outputs(), sys, stop);
+  StopWatch watch(stop);
   Vec q0, v0;
   sys.initial_state(q0, v0);
   if (!opt.quiet)
@@ -124,7 +121,7 @@ PeriodicFolderResult periodic_into_folder(const Scene& scene, const IntegratorSe
               << ")\n";
   std::string failure;
   try {
-    r.periodic = find_periodic(sys, t0, T, q0, v0, settings, popt, samples, &rows);
+    r.periodic = find_periodic(sys, t0, T, q0, v0, settings, popt, samples, &watch);
     if (!r.periodic.converged) {
       failure = r.periodic.message;
       r.exit_code = 2;
@@ -156,9 +153,7 @@ PeriodicFolderResult periodic_into_folder(const Scene& scene, const IntegratorSe
       wopt.integrator = settings.name;
       wopt.grid = scene.output.grid;
       ResultsWriter w(r.results, run.outputs().channels(), wopt);
-      const long width = run.outputs().size();
-      for (std::size_t k = 0; k < rows.times().size(); ++k)
-        w.append(rows.times()[k], rows.values().data() + static_cast<long>(k) * width);
+      write_rows(r.periodic, run.outputs(), sys, w);
       w.finish(r.periodic.stats, "completed");
       r.rows = w.rows_written();
       sum.channels = w.channels();

@@ -118,42 +118,17 @@ RunData run_case(const SceneSource& src, const IntegratorSettings& settings,
 
 namespace {
 
-// The chosen channels of the cycle being integrated (each cycle starts anew).
-class PeriodicRows : public run::CycleObserver {
+// Ends the search when the study asks (stop).
+class StopAsked : public run::CycleObserver {
  public:
-  PeriodicRows(OutputSet& out, const std::vector<int>& channels, const std::function<bool()>& stop)
-      : out_(out), channels_(channels), stop_(stop), row_(static_cast<std::size_t>(out.size())) {
-    for (int i = 0; i < out.size(); ++i)
-      if (out.channels()[static_cast<std::size_t>(i)].name == "crank_angle") crank_ = i;
-  }
-  void begin(int) override {
-    time_.clear();
-    crank_values_.clear();
-    rows_.clear();
-  }
-  void state(double t, const Vec& q, const Vec& v) override {
-    out_.values(t, q.data(), v.data(), row_.data());
-    time_.push_back(t);
-    if (crank_ >= 0) crank_values_.push_back(row_[static_cast<std::size_t>(crank_)]);
-    for (int c : channels_) {
-      const double y = row_[static_cast<std::size_t>(c)];
-      if (!std::isfinite(y))
-        throw RunError("channel '" + out_.channels()[static_cast<std::size_t>(c)].name +
-                       "' is not finite at t = " + std::to_string(t) + " s");
-      rows_.push_back(y);
-    }
-  }
+  explicit StopAsked(const std::function<bool()>& stop) : stop_(stop) {}
+  void state(double, const Vec&, const Vec&) override {}
   void between_steps(double t, double) override {
     if (stop_ && stop_()) throw RunError("interrupted at t = " + std::to_string(t) + " s");
   }
-  std::vector<double> time_, crank_values_, rows_;
 
  private:
-  OutputSet& out_;
-  const std::vector<int>& channels_;
   const std::function<bool()>& stop_;
-  std::vector<double> row_;
-  int crank_ = -1;
 };
 
 }  // namespace
@@ -170,27 +145,46 @@ RunData run_periodic_case(const SceneSource& src, const IntegratorSettings& sett
     std::vector<double> samples;
     for (double t : sr.outputs().times())
       if (t < t0 + T * (1.0 - 1e-9)) samples.push_back(t);
-    PeriodicRows rows(sr.outputs(), channels, stop);
+    StopAsked watch(stop);
     Vec q0, v0;
     sr.system().initial_state(q0, v0);
     run::PeriodicOptions po;
     po.method = run::periodic_method(method);
     po.tol = tol;
     const run::PeriodicResult r =
-        run::find_periodic(sr.system(), t0, T, q0, v0, settings, po, samples, &rows);
+        run::find_periodic(sr.system(), t0, T, q0, v0, settings, po, samples, &watch);
     d.stats = r.stats;
     d.wall = r.wall;
     if (!r.converged) {
       d.status = CaseStatus::failed;
       d.message = r.message;
     } else {
-      d.status = CaseStatus::completed;
-      d.time = rows.time_;
-      d.crank = rows.crank_values_;
-      const long nr = static_cast<long>(d.time.size()), nc = static_cast<long>(channels.size());
+      // the rows of the converged cycle, from its sampled states
+      OutputSet& out = sr.outputs();
+      int crank = -1;
+      for (int i = 0; i < out.size(); ++i)
+        if (out.channels()[static_cast<std::size_t>(i)].name == "crank_angle") crank = i;
+      std::vector<double> row(static_cast<std::size_t>(out.size()));
+      const long nr = static_cast<long>(r.sample_t.size()), nc = static_cast<long>(channels.size());
       d.y.resize(nr, nc);
-      for (long i = 0; i < nr; ++i)
-        for (long c = 0; c < nc; ++c) d.y(i, c) = rows.rows_[static_cast<std::size_t>(i * nc + c)];
+      for (long i = 0; i < nr; ++i) {
+        const double t = r.sample_t[static_cast<std::size_t>(i)];
+        out.values(t, r.sample_q[static_cast<std::size_t>(i)].data(),
+                   r.sample_v[static_cast<std::size_t>(i)].data(), row.data());
+        d.time.push_back(t);
+        if (crank >= 0) d.crank.push_back(row[static_cast<std::size_t>(crank)]);
+        for (long c = 0; c < nc; ++c) {
+          const double y = row[static_cast<std::size_t>(channels[static_cast<std::size_t>(c)])];
+          if (!std::isfinite(y))
+            throw RunError(
+                "channel '" +
+                out.channels()[static_cast<std::size_t>(channels[static_cast<std::size_t>(c)])]
+                    .name +
+                "' is not finite at t = " + std::to_string(t) + " s");
+          d.y(i, c) = y;
+        }
+      }
+      d.status = CaseStatus::completed;
     }
   } catch (const std::exception& e) {
     d.status = CaseStatus::failed;

@@ -76,6 +76,7 @@ TEST(Periodic, NewtonOnLinearModesGivesTheHarmonicSolutionInOneIteration) {
   test::SdofProblem p(osc);
   run::PeriodicOptions opt;
   opt.method = run::PeriodicMethod::newton;
+  opt.coarse = 1.0;  // every cycle at the settings' tolerances
   opt.tol = 1e-9;
   const Vec q0 = Vec::Zero(3), v0 = Vec::Zero(3);
   const run::PeriodicResult r = run::find_periodic(p, t0, T, q0, v0, tight_ida(), opt);
@@ -113,6 +114,7 @@ TEST(Periodic, ProjectedNewtonOnLinearModesConvergesInOneIteration) {
   run::PeriodicOptions opt;
   opt.method = run::PeriodicMethod::projected;
   opt.linearization = "averaged";  // exact for a linear, time-invariant system
+  opt.coarse = 1.0;
   opt.tol = 1e-7;
   opt.slow = 1e-3;
   const run::PeriodicResult r =
@@ -130,6 +132,37 @@ TEST(Periodic, ProjectedNewtonOnLinearModesConvergesInOneIteration) {
         << "mode " << i;
   }
   expect_multipliers(r.multipliers, mode_multipliers(osc, T), 1e-6);
+}
+
+TEST(Periodic, CoarseCyclesFirstTheAcceptedOneAtTheSettingsTolerances) {
+  const double W = 2 * kPi * 2.0, T = 2 * kPi / W;
+  const auto osc = forced_modes(W);
+  IntegratorSettings loose;
+  loose.rtol = 1e-6;
+  loose.atol = 1e-9;
+  run::PeriodicOptions opt;
+  opt.linearization = "averaged";
+  opt.tol = 1e-5;
+  opt.slow = 1e-3;
+  test::SdofProblem p1(osc), p2(osc);
+  opt.coarse = 100.0;
+  const run::PeriodicResult c =
+      run::find_periodic(p1, 0.0, T, Vec::Zero(3), Vec::Zero(3), loose, opt);
+  opt.coarse = 1.0;
+  const run::PeriodicResult f =
+      run::find_periodic(p2, 0.0, T, Vec::Zero(3), Vec::Zero(3), loose, opt);
+  ASSERT_TRUE(c.converged) << c.message;
+  ASSERT_TRUE(f.converged) << f.message;
+  EXPECT_NE(c.iterations.front().step.find("(coarse)"), std::string::npos);
+  EXPECT_EQ(c.iterations.back().step.find("(coarse)"), std::string::npos);  // accepted: fine
+  EXPECT_LT(c.stats.steps, f.stats.steps * c.cycles / f.cycles);  // coarse cycles are cheaper
+  for (int i = 0; i < 3; ++i) {
+    double q = 0, v = 0;
+    harmonic(osc[static_cast<std::size_t>(i)], 0.0, q, v);
+    const double X = std::abs(q) + std::abs(v) / W;
+    EXPECT_NEAR(c.q[i], q, 1e-4 * X) << i;
+    EXPECT_NEAR(f.q[i], q, 1e-4 * X) << i;
+  }
 }
 
 TEST(Periodic, SteppedLinearizationApproachesExpLambdaT) {
@@ -257,6 +290,7 @@ TEST(Periodic, DuffingBranchesAgainstHarmonicBalanceAndTheirStability) {
     v0[0] = a[b] * d.W * std::sin(phi);
     run::PeriodicOptions opt;
     opt.method = run::PeriodicMethod::newton;
+    opt.coarse = 1.0;
     opt.tol = 1e-9;
     const run::PeriodicResult r = run::find_periodic(d, 0.0, T, q0, v0, tight_ida(), opt);
     ASSERT_TRUE(r.converged) << "branch " << b << ": " << r.message;
