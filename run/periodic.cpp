@@ -315,7 +315,8 @@ PeriodicResult Solver::solve(const Vec& q0, const Vec& v0) {
   if (!(opt_.tol > 0.0)) throw InputError("the periodicity tolerance must be positive");
   if (opt_.max_cycles < 2) throw InputError("at least two cycles are needed (max cycles)");
   const int N = 2 * n_;
-  coarse_ = opt_.coarse > 1.0;
+  // newton's differences of the cycle map need one tolerance throughout
+  coarse_ = opt_.coarse > 1.0 && opt_.method != PeriodicMethod::newton;
   Vec x = join(q0, v0);
   Vec gx = cycle(x, true);
   update_scale();
@@ -391,10 +392,12 @@ PeriodicResult Solver::solve(const Vec& q0, const Vec& v0) {
           build_projection(res);
           if (opt_.difference_jacobian && H_.size() > 0) {
             // H = L dG/dx V by one-sided differences along V's columns
+            // (against G(x) at the tolerances the differences are taken at)
             const double rel = std::max(std::sqrt(set_.rtol), 1e-7);
+            const Vec base = to_fine ? cycle(x, false) : gx;
             for (int k = 0; k < H_.cols(); ++k) {
               const Vec dir = V_.col(k);  // unit size in the scaled norm
-              H_.col(k) = L_ * (cycle(x + rel * dir, false) - gx) / rel;
+              H_.col(k) = L_ * (cycle(x + rel * dir, false) - base) / rel;
             }
           }
           have_lin = true;

@@ -57,7 +57,8 @@ struct PeriodicOptions {
   bool difference_floquet = false;
   /// The first cycles at rtol and atol times this (1: none), until a cycle's
   /// defect is below 30 x tol; the cycle accepted is always at the settings'
-  /// own tolerances (a fixed-step method's steps are not changed).
+  /// own tolerances (a fixed-step method's steps are not changed; newton,
+  /// whose differences need one tolerance, takes every cycle at the settings').
   double coarse = 10.0;
   int steps = 180;  ///< stepped: implicit Euler steps over the cycle (at most one per sample)
 };
