@@ -103,6 +103,7 @@ int cmd_periodic(const std::vector<std::string>& args) {
     if (!r.results.empty()) std::cerr << "  results: " << r.results << "\n";
     std::cerr << "  summary: " << r.summary << "\n";
     if (!r.csv.empty()) std::cerr << "  csv:     " << r.csv << "\n";
+    if (!r.state.empty()) std::cerr << "  state:   " << r.state << " (evas run --initial)\n";
   }
   return r.exit_code;
 }

@@ -7,6 +7,7 @@
 
 #include "integrators/integrator.h"
 #include "integrators/settings.h"
+#include "io/initial_state.h"
 #include "study/scene_edit.h"
 
 namespace evas::cli {
@@ -76,7 +77,10 @@ void add_scene_run_options(po::options_description& opts) {
       "directory is refused, exit 1)")("csv", "also write DIR/results.csv")(
       "max-wall", po::value<double>(),
       "wall-time limit [s]: the run stops with status 'failed: wall-time limit ...' "
-      "(exit 2, rows kept) when it runs longer")("quiet,q", "no progress line");
+      "(exit 2, rows kept) when it runs longer")("quiet,q", "no progress line")(
+      "initial", po::value<std::string>(),
+      "FILE: start from the bodies' states in FILE (the state.yaml evas periodic writes: a "
+      "run-up from the steady cycle at its first speed) in place of the scene's initial state");
 }
 
 Scene scene_from_options(const std::string& command, const po::variables_map& vm) {
@@ -99,6 +103,7 @@ Scene scene_from_options(const std::string& command, const po::variables_map& vm
   if (vm.count("set"))
     for (const auto& a : vm["set"].as<std::vector<std::string>>()) apply_setting_assignment(set, a);
   warn_unread_settings(command, vm, set);
+  if (vm.count("initial")) apply_initial_state(*scene.model, vm["initial"].as<std::string>());
   return scene;
 }
 

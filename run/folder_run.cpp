@@ -82,7 +82,7 @@ void write_after(FolderResult& r, const std::string& prefix, Write&& write) {
 }
 
 // The files a run writes into its folder.
-const char* const kRunFiles[] = {"results.h5", "summary.json", "results.csv"};
+const char* const kRunFiles[] = {"results.h5", "summary.json", "results.csv", "state.yaml"};
 
 // "results.h5 and summary.json, written 2026-11-28 17:40 UTC": the earlier
 // run's files in `dir`, or "" when there are none.

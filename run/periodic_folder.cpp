@@ -2,9 +2,11 @@
 #include "run/periodic_folder.h"
 
 #include <cmath>
+#include <fstream>
 #include <iostream>
 #include <sstream>
 
+#include "io/initial_state.h"
 #include "io/results.h"
 #include "io/text_escape.h"
 #include "run/stop.h"
@@ -177,6 +179,25 @@ PeriodicFolderResult periodic_into_folder(const Scene& scene, const IntegratorSe
   } catch (const std::exception& e) {
     std::cerr << opt.log_prefix << ": FAILED: " << e.what() << "\n";
     if (r.exit_code == 0) r.exit_code = 2;
+  }
+  if (r.exit_code == 0) {
+    // the periodic state, for `--initial FILE` (a run-up from it, a neighbour's start)
+    r.state = (opt.dir / "state.yaml").string();
+    try {
+      std::ofstream f(r.state);
+      f << initial_state_text(
+          *scene.model, r.periodic.q, r.periodic.v, scene.name, t0,
+          "The periodic state of scene '" + scene.name + "' at t = " + format_number(t0) +
+              " s (evas periodic, " + to_text(popt.method) + ", defect " +
+              format_number(r.periodic.iterations.back().defect) +
+              "): each body's modal coordinates q and velocities v.\nStart a run from it with "
+              "`evas run SCENE --initial THIS_FILE`.");
+      if (!f) throw RunError(r.state + ": cannot be written");
+    } catch (const std::exception& e) {
+      std::cerr << opt.log_prefix << ": FAILED: " << e.what() << "\n";
+      r.exit_code = 2;
+      r.state.clear();
+    }
   }
   if (opt.csv && !r.results.empty() && r.exit_code == 0) {
     r.csv = (opt.dir / "results.csv").string();

@@ -3,7 +3,8 @@
 // grid, at the times a run from the scene's start has them modulo the period
 // (crank angle 0 .. 719 deg for the engine at 1 deg), and DIR/summary.json the
 // method, its iterations with their periodicity defect, the cycle
-// integrations, the Floquet multipliers and the wall time. A method that does
+// integrations, the Floquet multipliers and the wall time; DIR/state.yaml the
+// periodic state (io/initial_state.h: `--initial` starts a run from it). A method that does
 // not converge writes no results file (nothing that looks like a converged
 // cycle), only the summary with its defect history, and exits 2.
 #pragma once
@@ -20,6 +21,7 @@ struct PeriodicFolderResult {
   int exit_code = 0;   ///< 0 converged; 2 not converged, failed or a write failed; 128 + N signal
   std::string status;  ///< "completed" or "failed: ..."
   std::string results, summary, csv;  ///< files written ("" when not)
+  std::string state;                  ///< DIR/state.yaml: the periodic state (initial_state.h)
   long rows = 0;
 };
 

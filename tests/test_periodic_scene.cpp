@@ -10,6 +10,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "io/initial_state.h"
 #include "io/results.h"
 #include "run/folder_run.h"
 #include "run/period.h"
@@ -140,6 +141,20 @@ TEST(PeriodicScene, EngineCycleMatchesALongTransientAndSaysSo) {
   const double mu1 = std::abs(p.periodic.multipliers[1].mu);
   EXPECT_GT(mu1, 0.4);
   EXPECT_LT(mu1, 0.8);
+  // a run from the periodic state (its state.yaml, `--initial`) is settled:
+  // two cycles from it differ by less than the tolerance
+  ASSERT_FALSE(p.state.empty());
+  {
+    Scene from = engine();
+    apply_initial_state(*from.model, p.state);
+    const Body& crank = from.model->bodies()[0];
+    EXPECT_EQ(crank.q0, p.periodic.q.head(crank.n()));  // 17 digits read back to the bit
+    const run::FolderResult two =
+        run::run_into_folder(from, 2 * p.period.seconds, from.integrator, folder("from_state"));
+    ASSERT_EQ(two.outcome.exit_code, 0) << two.outcome.message;
+    EXPECT_TRUE(two.settledness.settled())
+        << two.settledness.max_difference << " in " << two.settledness.worst_channel;
+  }
   // against 20 cycles of the transient with the same settings (0.8 s): its
   // last cycle has settled to 2e-5 in the bearing loads (docs/periodic.md)
   Scene t = engine();
@@ -181,6 +196,33 @@ TEST(PeriodicScene, ASixCycleRunSaysItHasNotSettled) {
   EXPECT_LE(u.settledness.max_difference, 1e-2);
   EXPECT_LT(u.t_reached, 20 * 0.04);  // long before the limit
   EXPECT_NEAR(std::remainder(u.settledness.cycles, 1.0), 0.0, 1e-9);
+}
+
+TEST(InitialState, RefusesAStateThatDoesNotFitTheScene) {
+  const fs::path f = work_dir() / "state.yaml";
+  auto expect_refused = [&](const std::string& text, const std::string& what) {
+    std::ofstream(f) << text;
+    Scene s = engine();
+    try {
+      apply_initial_state(*s.model, f.string());
+      FAIL() << "accepted: " << text;
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(what), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find(f.string()), std::string::npos) << e.what();
+    }
+  };
+  expect_refused("scene: x\n", "lists 'bodies'");
+  expect_refused("bodies:\n  - {name: rotor, q: [1], v: [1]}\n", "no body 'rotor'");
+  expect_refused("bodies:\n  - {name: crank, q: [1, 2], v: [1, 2]}\n", "numbers, one per mode");
+  Scene s = engine();
+  const Vec q = Vec::Zero(s.model->size()), v = Vec::Zero(s.model->size());
+  std::string text = initial_state_text(*s.model, q, v, "engine-case1", 0.0, "zeros");
+  // only the crank: the block is left out
+  text = text.substr(0, text.find("  - {name: block"));
+  expect_refused(text, "leaves out body 'block'");
+  std::string bad = initial_state_text(*s.model, q, v, "x", 0.0, "");
+  bad.replace(bad.find("q: [0") + 4, 1, "nan");
+  expect_refused(bad, "is not a finite number");
 }
 
 TEST(Settledness, ComparesCyclesModuloATurnAndFloorsStillChannels) {

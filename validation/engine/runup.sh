@@ -4,7 +4,8 @@
 # and generalized-alpha, and its main-bearing loads as it passes 3000 rpm
 # against the steady 3000 rpm run (docs/validation.md, "Run-up").
 #   usage: validation/engine/runup.sh BUILD_DIR OUT_DIR
-# Writes OUT_DIR/runup-ida, runup-ga, steady (results) and OUT_DIR/runup.md.
+# Writes OUT_DIR/runup-ida, runup-ga, runup-ida-steady (from the steady cycle at
+# 1000 rpm), steady-1000, steady (results) and OUT_DIR/runup.md.
 set -eu
 if [ $# -lt 2 ]; then
   echo "usage: $0 BUILD_DIR OUT_DIR" >&2
@@ -34,12 +35,18 @@ sed -e "s|speed: 314.159}|speed: $w}|" "$tmp/case1.yaml" > "$tmp/steady.yaml"
 /usr/bin/time -f "run-up, generalized-alpha: %e s wall" "$evas" run "$tmp/runup.yaml" \
   --integrator generalized-alpha --step 5e-6 --out "$out/runup-ga" --csv --quiet --overwrite
 "$evas" run "$tmp/steady.yaml" --out "$out/steady" --csv --quiet --overwrite
+# the same IDA run-up from the steady cycle at its first speed (evas periodic's
+# state at 1000 rpm, docs/periodic.md) instead of from rest
+"$evas" periodic "$tmp/case1.yaml" --param "crank.lof.speed=$w0" --out "$out/steady-1000" \
+  --quiet --overwrite
+/usr/bin/time -f "run-up from the steady cycle, ida: %e s wall" "$evas" run "$tmp/runup.yaml" \
+  --initial "$out/steady-1000/state.yaml" --out "$out/runup-ida-steady" --csv --quiet --overwrite
 
 py=python3
 {
   echo "# Run-up 1000 -> 4000 rpm in $ramp s against the steady 3000 rpm run"
   echo
-  for r in ida ga; do
+  for r in ida ga ida-steady; do
     echo "## runup-$r"
     echo
     "$py" "$dir/runup_compare.py" "$out/runup-$r/results.csv" "$out/steady/results.csv" \
