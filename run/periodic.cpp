@@ -7,6 +7,7 @@
 #include <cmath>
 #include <memory>
 
+#include "integrators/sundials_util.h"
 #include "run/stop.h"
 #include "solver/quasi_static.h"
 
@@ -20,15 +21,10 @@ using cd = std::complex<double>;
 // The floor of a coordinate's scale, relative to the largest of its kind.
 constexpr double kScaleFloor = 1e-4;
 
+// The statistics of whole runs summed: the counters a SUNDIALS segment has
+// (sundials::add_segment), then the rest.
 void add_stats(IntegratorStats& sum, const IntegratorStats& s) {
-  sum.steps += s.steps;
-  sum.residual_evals += s.residual_evals;
-  sum.jacobian_evals += s.jacobian_evals;
-  sum.linear_setups += s.linear_setups;
-  sum.linear_solves += s.linear_solves;
-  sum.nonlinear_iterations += s.nonlinear_iterations;
-  sum.error_test_failures += s.error_test_failures;
-  sum.convergence_failures += s.convergence_failures;
+  sundials::add_segment(sum, s);
   sum.restarts += s.restarts;
   sum.refused_states += s.refused_states;
   sum.substeps += s.substeps;
