@@ -29,8 +29,8 @@ int cmd_plot(const std::vector<std::string>& args) {
                         "journal bearing (polar, orbit, film)")(
       "out", po::value<std::string>(), "the figure: a file name ending in .png or .svg")(
       "cycles", po::value<int>(&o.cycles),
-      "the last N whole cycles of a crank-angle grid (default 1; channels: 0, the whole "
-      "record; order: 0, every whole cycle)")(
+      "the last N whole cycles of a crank-angle grid (default 1, as evas spectrum and evas "
+      "report; channels: 0, the whole record; 0: every whole cycle)")(
       "cycle", po::value<double>(&o.cycle)->default_value(720.0), "cycle length [deg]")(
       "x", po::value<std::string>(&o.x)->default_value("auto"),
       "channels, film: auto, time or crank-angle")(
@@ -50,7 +50,7 @@ int cmd_plot(const std::vector<std::string>& args) {
     return 1;
   }
   o.kind = vm["kind"].as<std::string>();
-  if (!vm.count("cycles")) o.cycles = o.kind == "channels" || o.kind == "order" ? 0 : 1;
+  if (!vm.count("cycles")) o.cycles = o.kind == "channels" ? 0 : 1;
   if (o.cycles < 0) throw InputError("--cycles must be >= 0");
   if (!(o.cycle > 0.0 && o.cycle <= 1e6)) throw InputError("--cycle must be > 0 and <= 1e6 deg");
   if (vm.count("max-frequency") && !(o.max_frequency > 0.0))

@@ -27,11 +27,11 @@ int cmd_report(const std::vector<std::string>& args) {
       "title", po::value<std::string>(&o.title),
       "the page's title (default: Engine report: SCENE)")(
       "cycles", po::value<int>(&o.cycles),
-      "the last N whole 720-deg cycles drawn and analysed (default 2, or 1 when the record "
-      "holds one; 0: the figures show the whole record, the spectra every whole cycle)")(
-      "overwrite",
-      "replace the report in DIR (without it an existing DIR/index.html is "
-      "refused, exit 1)");
+      "the last N whole 720-deg cycles drawn and analysed (default 1, as evas spectrum and "
+      "evas plot order; 0: the figures show the whole record, the spectra every whole "
+      "cycle)")("overwrite",
+                "replace the report in DIR (without it an existing DIR/index.html is "
+                "refused, exit 1)");
   po::variables_map vm;
   if (parse_args(args, opts, {"results"}, vm)) return 0;
   if (!vm.count("results") || !vm.count("out")) {
@@ -46,7 +46,8 @@ int cmd_report(const std::vector<std::string>& args) {
   const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   for (const auto& n : r.notes) std::cerr << "evas report: note: " << n << "\n";
   std::cout << r.index.string() << "\n";
-  std::cerr << "evas report: " << r.figures << " figures, " << s << " s\n";
+  std::cerr << "evas report: " << r.figures << " figures over " << r.cycles << " cycles, " << s
+            << " s\n";
   return 0;
 }
 

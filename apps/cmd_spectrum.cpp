@@ -42,8 +42,8 @@ void order_mode(const ResultsData& d, const std::string& path, int ic, int cycle
     y[r] = d.values(r, ic);
   }
   const OrderSpectrum s = order_spectrum(th, y, cycles, cycle, max_order);
-  std::cout << "order spectrum of " << d.names[ic] << " [" << d.units[ic] << "], " << s.cycles
-            << " cycles of " << cycle << " deg\n  order     amplitude     phase [rad]\n";
+  std::cout << "order spectrum of " << d.names[ic] << " [" << d.units[ic] << "] over "
+            << cycles_used(s, cycle) << "\n  order     amplitude     phase [rad]\n";
   for (std::size_t k = 0; k < s.order.size(); ++k)
     std::cout << std::setw(7) << s.order[k] << std::setw(14) << std::setprecision(6)
               << s.amplitude[k] << std::setw(14) << s.phase[k] << "\n";
@@ -183,7 +183,7 @@ void time_mode(const ResultsData& d, int ic, const TimeSpectrumOptions& o, doubl
 }  // namespace
 
 int cmd_spectrum(const std::vector<std::string>& args) {
-  int cycles = 0;
+  int cycles = 1;
   double cycle = 720.0, max_order = 12.0, segment = 0.0, max_f = 0.0;
   TimeSpectrumOptions t;
   std::string bands;
@@ -193,8 +193,10 @@ int cmd_spectrum(const std::vector<std::string>& args) {
       "                     [--to T1] [--segment S] [--overlap F] [--bands third-octave]\n"
       "       evas spectrum RESULTS.h5 --erp NAME [the --time options]\n\n"
       "Order spectrum of one output channel over whole engine cycles taken from the end\n"
-      "of the record: by default every whole cycle, the start-up transient included; give\n"
-      "--cycles N for the last N only. The run must use the crank-angle output grid\n"
+      "of the record: by default the last one (as evas report, evas plot order and a\n"
+      "sweep's spectra take it), --cycles N the last N, --cycles 0 every whole cycle (a\n"
+      "run from rest: its start-up included). It prints which cycles it used. A\n"
+      "record of one steady cycle: evas periodic. The run must use the crank-angle output grid\n"
       "(its results carry the channel crank_angle). Orders are harmonics of the crank\n"
       "rotation in steps of 360/cycle (0.5 for a four-stroke cycle).\n\n"
       "With --time: the spectrum over time of the samples in [--from, --to] (a uniform\n"
@@ -212,7 +214,7 @@ int cmd_spectrum(const std::vector<std::string>& args) {
   opts.add_options()("help,h", "show this help")("channel", po::value<std::string>(),
                                                  "channel name, e.g. main1.fy")(
       "cycles", po::value<int>(&cycles),
-      "cycles analysed, >= 1 (default: every whole cycle of the record)")(
+      "the last N whole cycles analysed (default 1; 0: every whole cycle of the record)")(
       "cycle", po::value<double>(&cycle)->default_value(720.0), "cycle length [deg]")(
       "max-order", po::value<double>(&max_order)->default_value(12.0), "highest order listed")(
       "time", "spectrum over time instead of over engine orders")(
@@ -247,9 +249,9 @@ int cmd_spectrum(const std::vector<std::string>& args) {
       throw InputError(std::string("--") + k + " applies to a spectrum over time: add --time");
   if (over_time && vm.count("cycles"))
     throw InputError("--cycles applies to the order spectrum: leave out --time");
-  if (vm.count("cycles") && cycles < 1)
+  if (vm.count("cycles") && cycles < 0)
     throw InputError("--cycles " + std::to_string(cycles) +
-                     ": give a number of cycles >= 1 (leave it out for every whole cycle)");
+                     ": give a number of cycles >= 1 (0 for every whole cycle)");
   if (!(cycle > 0.0 && cycle <= 1e6))
     throw InputError("--cycle must be > 0 and <= 1e6 deg (720 for a four-stroke engine)");
   if (!(max_order >= 0.0 && max_order <= 1e6))

@@ -118,6 +118,15 @@ void add_common(po::options_description& o) {
       "max-wall", po::value<double>(),
       "wall-clock limit of one case or sweep task (with --repeats: of all its runs) [s]: one "
       "that takes longer fails with 'timed out' and the study goes on")(
+      "initial", po::value<std::string>(),
+      "every run (the reference's too) starts from the state in FILE (evas periodic's "
+      "DIR/state.yaml) in place of the scene's initial state")(
+      "steady",
+      "every run is one period from the scene's periodic state (found first with evas "
+      "periodic's projected method and the scene's own integrator, or --initial FILE's): "
+      "the error is the integration error on the steady cycle, without the start-up")(
+      "steady-tol", po::value<double>()->default_value(3e-4, "3e-4"),
+      "with --steady: the periodicity defect of the state found")(
       "no-plot", "do not run gnuplot (the .gp script is still written)")("quiet,q",
                                                                          "no progress lines");
 }
@@ -153,6 +162,11 @@ study::Options common_options(const po::variables_map& vm, const std::string& su
   if (vm.count("repeats")) o.repeats = vm["repeats"].as<int>();
   if (vm.count("out")) o.out_dir = vm["out"].as<std::string>();
   o.plot = !vm.count("no-plot");
+  if (vm.count("initial")) o.start.initial_file = vm["initial"].as<std::string>();
+  o.start.steady = vm.count("steady") > 0;
+  o.start.tol = vm["steady-tol"].as<double>();
+  if (o.start.steady && sub == "sweep")
+    throw InputError("--steady: a sweep's points are steady cycles with --periodic");
   if (!vm.count("quiet")) o.log = &std::cerr;
   o.stop = [] { return g_stop != 0; };
   if (vm.count("max-wall")) {
@@ -420,7 +434,10 @@ int sweep(const std::vector<std::string>& args) {
       "every point as its steady cycle (evas periodic, this method: projected, anderson, "
       "fixed-point, newton), not a run from rest to --t-end (docs/periodic.md)")(
       "periodic-tol", po::value<double>()->default_value(3e-4, "3e-4"),
-      "with --periodic: the periodicity defect at which a point's cycle is accepted");
+      "with --periodic: the periodicity defect at which a point's cycle is accepted")(
+      "cold-start",
+      "with --periodic: every point's search from the scene's initial state, not from the "
+      "periodic state of the point before it");
   add_cases(opts);
   add_common(opts);
   po::variables_map vm;
@@ -434,6 +451,9 @@ int sweep(const std::vector<std::string>& args) {
   so.cycles = vm["cycles"].as<int>();
   if (vm.count("periodic")) so.periodic = vm["periodic"].as<std::string>();
   so.periodic_tol = vm["periodic-tol"].as<double>();
+  so.warm_start = !vm.count("cold-start");
+  if (vm.count("cold-start") && so.periodic.empty())
+    throw InputError("--cold-start: needs --periodic (a transient point starts from the scene)");
   if (vm.count("order-channels")) so.order_channels = vm["order-channels"].as<std::string>();
   if (vm.count("point")) {
     so.point = vm["point"].as<int>();

@@ -383,8 +383,8 @@ void plot_order(const Record& rec, const PlotOptions& o, const fs::path& out, Fi
   for (std::size_t k = 0; k < s.order.size(); ++k)
     f.dat << num(s.order[k]) << " " << num(sc.factor * s.amplitude[k]) << "\n";
   f.gp << gp_terminal(out, 1000, 600) << "set title "
-       << gp_quote(o.title.empty() ? "order spectrum of " + d.names[c] + " (" + rec.name() + ", " +
-                                         std::to_string(s.cycles) + " cycle(s))"
+       << gp_quote(o.title.empty() ? "order spectrum of " + d.names[c] + " (" + rec.name() +
+                                         "): " + cycles_used(s, o.cycle)
                                    : o.title)
        << "\nset xlabel 'engine order [-]'\nset ylabel " << gp_quote("amplitude [" + sc.unit + "]")
        << "\nset grid\nset xtics 1\nset mxtics 2\nset xrange [-0.25:" << num(o.max_order + 0.25)

@@ -448,6 +448,7 @@ ReportResult write_report(const std::string& results, const fs::path& dir, const
   if (!have_gnuplot())
     throw InputError("report: gnuplot is not installed (apt-get install gnuplot-nox)");
   const Run run = read_run(results, o.cycles);
+  out.cycles = run.span_text() + " of " + std::to_string(run.whole_cycles) + " whole";
   std::error_code ec;
   fs::create_directories(dir, ec);
   if (ec) throw InputError("--out " + dir.string() + ": cannot create the folder: " + ec.message());

@@ -33,7 +33,7 @@ namespace evas {
 
 struct ReportOptions {
   std::string title;  ///< "" for "Engine report: SCENE"
-  int cycles = -1;    ///< last whole cycles drawn and analysed (-1: 2, or as many as there are)
+  int cycles = -1;    ///< last whole cycles drawn and analysed (-1: the last one, as evas spectrum)
   bool overwrite = false;  ///< replace DIR/index.html of an earlier report
 };
 
@@ -42,6 +42,7 @@ struct ReportResult {
   std::vector<std::string> files;  ///< every file written (figures, scripts, data, the page)
   int figures = 0;
   std::vector<std::string> notes;  ///< what the report could not show, and why
+  std::string cycles;              ///< which cycles it drew and analysed (Run::span_text)
 };
 
 /// Writes the report of `results` into `dir` (created if missing). Throws

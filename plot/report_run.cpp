@@ -92,7 +92,8 @@ Run read_run(const std::string& path, int cycles) {
                      fixed(span, 1) + " deg of crank angle, " + std::to_string(run.whole_cycles) +
                      " whole cycle(s) of 720 deg (give fewer, 0 for the whole record, or "
                      "run longer)");
-  run.cycles = cycles >= 0 ? cycles : std::min(2, run.whole_cycles);
+  // the default, the last whole cycle, is that of evas spectrum, evas plot order and a sweep
+  run.cycles = cycles >= 0 ? cycles : std::min(1, run.whole_cycles);
   if (one_periodic_cycle) {
     run.whole_cycles = 1;
     run.cycles = 0;  // the whole record, which is the cycle

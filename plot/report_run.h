@@ -53,7 +53,7 @@ struct Run {
 
 /// Reads the results file; InputError when it is no crank-angle engine run
 /// (naming its grid, channels and journal bearings) or holds fewer whole
-/// cycles than `cycles` (-1: 2, or as many as there are).
+/// cycles than `cycles` (-1: the last one, or the whole record when it holds none).
 Run read_run(const std::string& path, int cycles);
 
 /// The scene's name (from the scene text the file keeps; else its folder).

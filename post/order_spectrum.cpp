@@ -1,6 +1,7 @@
 #include "post/order_spectrum.h"
 
 #include <cmath>
+#include <cstdio>
 #include <string>
 
 #include "model/types.h"
@@ -80,6 +81,9 @@ std::vector<OrderSpectrum> order_spectra(const std::vector<double>& theta,
       }
       OrderSpectrum& s = out[k];
       s.cycles = static_cast<int>(C);
+      s.available = static_cast<int>(available);
+      s.first_angle = theta[first];
+      s.last_angle = theta[n - 1];
       s.order.push_back(order);
       s.amplitude.push_back(scale * std::hypot(re, im));
       // y ~ A cos(order (theta - theta0) + phi0) = A cos(order theta + phase)
@@ -87,6 +91,20 @@ std::vector<OrderSpectrum> order_spectra(const std::vector<double>& theta,
     }
   }
   return out;
+}
+
+std::string cycles_used(const OrderSpectrum& s, double cycle_deg) {
+  auto deg = [](double x) {
+    char b[32];
+    std::snprintf(b, sizeof b, "%.6g", x);
+    return std::string(b);
+  };
+  const std::string whole = " whole " + deg(cycle_deg) + "-deg cycle";
+  std::string t = s.cycles == s.available && s.cycles == 1
+                      ? "the record's one" + whole
+                      : "the last " + std::to_string(s.cycles) + " of " +
+                            std::to_string(s.available) + whole + (s.available == 1 ? "" : "s");
+  return t + " (crank angle " + deg(s.first_angle) + " to " + deg(s.last_angle) + " deg)";
 }
 
 }  // namespace evas

@@ -8,6 +8,7 @@
 // integer harmonics of the cycle are reported, so no leakage enters them.
 #pragma once
 
+#include <string>
 #include <vector>
 
 namespace evas {
@@ -16,8 +17,15 @@ struct OrderSpectrum {
   std::vector<double> order;      ///< engine order (harmonic of the crank rotation)
   std::vector<double> amplitude;  ///< single-sided amplitude (mean value at order 0)
   std::vector<double> phase;      ///< [rad] in (-pi, pi], of cos(order * theta + phase)
-  int cycles = 0;                 ///< cycles used
+  int cycles = 0;                 ///< cycles used: the record's last ones
+  int available = 0;              ///< whole cycles the record holds
+  double first_angle = 0.0,
+         last_angle = 0.0;  ///< crank angle of the first and last sample used [deg]
 };
+
+/// Which cycles a spectrum used, for the commands to print: "the last 1 of 6
+/// whole 720-deg cycles (crank angle 3600 to 4319 deg)".
+std::string cycles_used(const OrderSpectrum& s, double cycle_deg = 720.0);
 
 /// theta_deg: crank angles, ascending with a uniform step that divides cycle_deg;
 /// y: the signal at those angles. cycles = 0 uses as many whole cycles as the

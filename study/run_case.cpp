@@ -135,7 +135,7 @@ class StopAsked : public run::CycleObserver {
 
 RunData run_periodic_case(const SceneSource& src, const IntegratorSettings& settings,
                           const std::vector<int>& channels, const std::string& method, double tol,
-                          const std::function<bool()>& stop) {
+                          const std::function<bool()>& stop, const std::vector<double>& initial) {
   RunData d;
   try {
     Scene scene = src.parse();
@@ -148,6 +148,14 @@ RunData run_periodic_case(const SceneSource& src, const IntegratorSettings& sett
     StopAsked watch(stop);
     Vec q0, v0;
     sr.system().initial_state(q0, v0);
+    if (!initial.empty()) {
+      if (initial.size() != static_cast<std::size_t>(q0.size() + v0.size()))
+        throw InputError("the periodic search's initial state has " +
+                         std::to_string(initial.size()) + " numbers; the scene's state has " +
+                         std::to_string(q0.size() + v0.size()));
+      q0 = Eigen::Map<const Vec>(initial.data(), q0.size());
+      v0 = Eigen::Map<const Vec>(initial.data() + q0.size(), v0.size());
+    }
     run::PeriodicOptions po;
     po.method = run::periodic_method(method);
     po.tol = tol;
@@ -184,11 +192,14 @@ RunData run_periodic_case(const SceneSource& src, const IntegratorSettings& sett
           d.y(i, c) = y;
         }
       }
+      d.state.assign(r.q.data(), r.q.data() + r.q.size());
+      d.state.insert(d.state.end(), r.v.data(), r.v.data() + r.v.size());
       d.status = CaseStatus::completed;
     }
   } catch (const std::exception& e) {
     d.status = CaseStatus::failed;
     d.message = e.what();
+    d.state.clear();
   }
   if (d.y.rows() != d.rows()) d.y.resize(d.rows(), static_cast<long>(channels.size()));
   return d;

@@ -46,6 +46,9 @@ struct RunData {
   Mat y;                      ///< rows x selected channels
   IntegratorStats stats;
   double wall = std::numeric_limits<double>::quiet_NaN();  ///< init + integrate [s]
+  /// A converged periodic cycle's start state (every body's q, then v); empty
+  /// for a transient run
+  std::vector<double> state;
   long rows() const { return static_cast<long>(time.size()); }
 };
 
@@ -65,12 +68,15 @@ RunData run_case(const SceneSource& src, const IntegratorSettings& settings,
 /// defect tolerance `tol`, the scene's own period) with `settings` as the cycle
 /// map: the rows of the converged cycle (crank angle 0 .. 719 deg on the
 /// engine's grid), its statistics summed over every cycle integrated and the
-/// wall time of the whole search. Not converged: failed, with the defect and
-/// the slowest multiplier in the message, and no rows. Never throws for a
-/// failure of the run itself.
+/// wall time of the whole search, and the cycle's start state (RunData::state).
+/// `initial` (every body's q then v; empty = the scene's initial state) is the
+/// search's first guess. Not converged: failed, with the defect and the
+/// slowest multiplier in the message, and no rows. Never throws for a failure
+/// of the run itself.
 RunData run_periodic_case(const SceneSource& src, const IntegratorSettings& settings,
                           const std::vector<int>& channels, const std::string& method, double tol,
-                          const std::function<bool()>& stop = nullptr);
+                          const std::function<bool()>& stop = nullptr,
+                          const std::vector<double>& initial = {});
 
 /// run_case `repeats` times (stopping at the first failure); the wall time is
 /// the minimum over the runs, data and statistics are those of the last run.

@@ -26,6 +26,7 @@
 #include "study/measure.h"
 #include "study/run_case.h"
 #include "study/scene_edit.h"
+#include "study/steady_start.h"
 #include "study/task_runner.h"
 
 namespace evas::study {
@@ -56,6 +57,9 @@ struct Options {
   /// Runs the cases (nullptr: one after another in this process); --jobs, MPI.
   std::shared_ptr<TaskRunner> runner;
   double max_wall = 0.0;  ///< wall-clock limit of one run [s] (--max-wall); 0 = none
+  /// Every run from one state (--initial FILE), or one period from the
+  /// periodic state (--steady): steady_start.h
+  SteadyStart start;
 };
 
 /// A case spec with where it came from ("" = --case, else "FILE:LINE").
@@ -90,6 +94,7 @@ struct StudyInfo {
   std::string scene_name, scene_path, scene_text, grid;
   std::vector<std::string> channels;  ///< selected channel names
   std::string window, norm, error_definition;
+  std::string start;  ///< what every run starts from ("" = the scene's initial state)
   std::string out_dir;
   bool interrupted = false;
   std::vector<std::string> files;  ///< written files

@@ -77,6 +77,9 @@ Setup prepare(const Options& opt) {
   if (opt.repeats < 1) throw InputError("--repeats must be >= 1");
   Setup s;
   s.src = load_scene_source(opt.scene, opt.params, opt.t_end);
+  if (opt.start.steady && opt.t_end)
+    throw InputError("--steady runs one period from the periodic state: leave out --t-end");
+  s.started = start_from(s.src, opt.start, opt.stop, opt.log);
   s.info = probe_scene(s.src);
   for (const std::string& w : s.info.warnings) say(opt, "evas study: warning: " + w);
   s.channels = select_channels(s.info.channels, opt.channels);
@@ -110,6 +113,8 @@ Setup prepare(const Options& opt) {
   fs::create_directories(s.out, ec);
   if (ec)
     throw InputError(s.out.string() + ": cannot create the output directory: " + ec.message());
+  // the start state as a file of its own: evas run --initial reproduces a case
+  if (!s.started.state_text.empty()) write_file_atomic(s.out / "state.yaml", s.started.state_text);
   return s;
 }
 
@@ -123,6 +128,7 @@ StudyInfo make_info(const Setup& s) {
   i.window = s.window.text();
   i.norm = norm_text(s.norm);
   i.error_definition = error_definition(s.norm, s.window);
+  i.start = s.started.description;
   i.out_dir = s.out.string();
   return i;
 }
@@ -382,6 +388,8 @@ std::string md_header(const std::string& title, const StudyInfo& info, const Opt
     md << " (" << ref.stats.steps << " steps, " << gnum(ref.wall, 3) << " s)";
   md << "\n";
   md << "- channels: " << md_cell(join(info.channels)) << "\n";
+  if (!info.start.empty())
+    md << "- every run starts from " << md_cell(info.start) << " (state.yaml)\n";
   md << "- " << info.error_definition << "\n";
   md << "- wall: init + integrate [s], minimum over " << opt.repeats << " run"
      << (opt.repeats > 1 ? "s" : "") << "\n";
@@ -442,6 +450,7 @@ void write_info_attributes(hid_t f, const std::string& kind, const StudyInfo& in
   h5::write_attribute(f, "window", info.window);
   h5::write_attribute(f, "norm", info.norm);
   h5::write_attribute(f, "error_definition", info.error_definition);
+  if (!info.start.empty()) h5::write_attribute(f, "start", info.start);
   h5::write_attribute(f, "repeats", static_cast<long long>(opt.repeats));
   h5::write_attribute(f, "status", info.interrupted ? "interrupted" : "completed");
 }

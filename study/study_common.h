@@ -45,6 +45,7 @@ struct Setup {
   bool window_default = false;
   Norm norm = Norm::Max;
   fs::path out;
+  StartedFrom started;  ///< --initial / --steady (steady_start.h)
 };
 
 /// Reads the scene, selects the channels, window and norm, creates the output folder.

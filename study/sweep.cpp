@@ -14,6 +14,7 @@
 #include "plot/gnuplot_process.h"
 #include "run/periodic.h"
 #include "study/report.h"
+#include "study/sweep_chains.h"
 #include "study/sweep_detail.h"
 
 namespace evas::study {
@@ -202,7 +203,11 @@ SweepResult sweep(const Options& opt, const SweepOptions& so) {
   res.info.window = so.periodic.empty()
                         ? "last " + std::to_string(so.cycles) + " cycle(s) per spectrum"
                         : "the periodic cycle of every point (evas periodic, " + so.periodic +
-                              ", defect " + gnum(so.periodic_tol, 3) + ")";
+                              ", defect " + gnum(so.periodic_tol, 3) +
+                              (so.warm_start ? ", each search from the periodic state of the "
+                                               "point before it"
+                                             : ", every search from the scene's initial state") +
+                              ")";
   const fs::path dir = s.out;
   auto key_of = [&](std::size_t k) {
     return task_key(res.keys, res.tasks[k].values,
@@ -276,27 +281,51 @@ SweepResult sweep(const Options& opt, const SweepOptions& so) {
   res.coordinator_seconds = since(started);
   auto last_h5 = Clock::now();
   std::size_t finished = 0;
-  runner.run(
-      tasks, todo,
-      [&](const TaskEnd& e) {
-        const auto busy = Clock::now();
-        const auto k = static_cast<std::size_t>(e.index);
-        record(k, e.run, e.worker);
-        write_task_file(dir / task_file_name(e.index), d, k, key_of(k), print_of(k));
-        ++finished;
-        say(opt, "[" + std::to_string(finished) + "/" + std::to_string(todo.size()) + "] task " +
-                     std::to_string(k) + " (" + key_of(k) + "): " + to_text(e.run.status) +
-                     (e.run.status == CaseStatus::failed ? ": " + e.run.message : "") + ", " +
-                     gnum(e.run.wall, 4) + " s");
-        write_sweep_tables(opt, d);
-        // the big file at most every 10 s; the task files are the record
-        if (std::chrono::duration<double>(Clock::now() - last_h5).count() > 10.0) {
-          write_sweep_h5(opt, d, so);
-          last_h5 = Clock::now();
-        }
-        res.coordinator_seconds += since(busy);
-      },
-      opt.stop);
+  auto done = [&](const TaskEnd& e) {
+    const auto busy = Clock::now();
+    const auto k = static_cast<std::size_t>(e.index);
+    record(k, e.run, e.worker);
+    write_task_file(dir / task_file_name(e.index), d, k, key_of(k), print_of(k));
+    ++finished;
+    say(opt, "[" + std::to_string(finished) + "/" + std::to_string(todo.size()) + "] task " +
+                 std::to_string(k) + " (" + key_of(k) + "): " + to_text(e.run.status) +
+                 (e.run.status == CaseStatus::failed ? ": " + e.run.message : "") + ", " +
+                 gnum(e.run.wall, 4) + " s" +
+                 (res.tasks[k].start.empty() ? "" : ", started from " + res.tasks[k].start));
+    write_sweep_tables(opt, d);
+    // the big file at most every 10 s; the task files are the record
+    if (std::chrono::duration<double>(Clock::now() - last_h5).count() > 10.0) {
+      write_sweep_h5(opt, d, so);
+      last_h5 = Clock::now();
+    }
+    res.coordinator_seconds += since(busy);
+  };
+  // periodic points in warm-start chains (sweep_chains.h): wave by wave, each
+  // task from its predecessor's periodic state when that one converged
+  const std::vector<int> pred =
+      !so.periodic.empty() && so.warm_start
+          ? warm_predecessors(points.size(), res.cases.size(), runner.width())
+          : std::vector<int>(tasks.size(), -1);
+  const std::vector<int> wave_of = chain_waves(pred);
+  const int waves = wave_of.empty() ? 0 : *std::max_element(wave_of.begin(), wave_of.end()) + 1;
+  for (int w = 0; w < waves && !stopped(opt); ++w) {
+    std::vector<int> wave;
+    for (int k : todo)
+      if (wave_of[static_cast<std::size_t>(k)] == w) wave.push_back(k);
+    for (int k : wave) {
+      const auto ku = static_cast<std::size_t>(k);
+      tasks[ku].initial.clear();
+      res.tasks[ku].start.clear();
+      const int j = pred[ku];
+      if (j < 0) continue;
+      const SweepTask& before = res.tasks[static_cast<std::size_t>(j)];
+      if (before.result.status == CaseStatus::completed && !before.data.state.empty()) {
+        tasks[ku].initial = before.data.state;
+        res.tasks[ku].start = "point " + std::to_string(before.point);
+      }
+    }
+    if (!wave.empty()) runner.run(tasks, wave, done, opt.stop);
+  }
   const auto after = Clock::now();
   if (stopped(opt)) res.info.interrupted = true;
   d.natural = campbell_frequencies(s.src, d, so);

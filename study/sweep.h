@@ -41,6 +41,11 @@ struct SweepOptions {
   /// tolerance periodic_tol: the spectra are the steady cycle's
   std::string periodic;
   double periodic_tol = 3e-4;
+  /// With periodic: each point's search starts from the periodic state of the
+  /// point before it (of the same case, in the grid's order), run in chains as
+  /// wide as the runner (docs/study.md); false: every point from the scene's
+  /// own initial state
+  bool warm_start = true;
 };
 
 struct SweepTask {
@@ -50,6 +55,9 @@ struct SweepTask {
   CaseResult result;                ///< status, message, wall, statistics (error: NaN)
   RunData data;                     ///< the channels
   std::string worker;               ///< where it ran
+  /// How a periodic point's search started: "point N" (a warm start from that
+  /// point's periodic state) or "" (the scene's initial state)
+  std::string start;
   double rpm = std::numeric_limits<double>::quiet_NaN();  ///< mean crank speed [rpm]
 };
 

@@ -92,6 +92,10 @@ void write_task_file(const fs::path& path, const SweepData& d, std::size_t k,
     h5::write_strings(f, "units", d.units);
     write_channels(f, t.data);
     write_stats(f, t.result.stats);
+    // a periodic point's cycle start state: the next point's warm start on --resume
+    if (!t.data.state.empty())
+      h5::write_doubles(f, "state", {t.data.state.size()}, t.data.state.data(), false);
+    if (!t.start.empty()) h5::write_attribute(f, "start", t.start);
   });
 }
 
@@ -127,7 +131,9 @@ bool read_task_file(const fs::path& path, SweepData& d, std::size_t k, const std
     std::string raw;
     for (long long b : bytes) raw += static_cast<char>(static_cast<unsigned char>(b));
     run.stats = stats_from_bytes(raw);  // throws on a wrong size: the task runs again
+    if (h5::exists(f, "state")) run.state = h5::read_doubles(f, "state", dims);
     SweepTask& t = d.res.tasks[k];
+    if (h5::has_attribute(f, "start")) t.start = h5::read_string_attribute(f, "start");
     t.data = std::move(run);
     t.worker = h5::read_string_attribute(f, "worker") + " (earlier run)";
     t.result.status = t.data.status;

@@ -96,7 +96,7 @@ RunData run_task(const TaskSpec& task, const std::function<bool()>& stop) {
   RunData d;
   if (!task.periodic.empty()) {
     d = run_periodic_case(task.src, task.settings, task.channels, task.periodic, task.periodic_tol,
-                          ask);
+                          ask, task.initial);
   } else if (task.limit.empty()) {
     d = run_case_repeated(task.src, task.settings, task.channels, task.repeats, ask);
   } else {
@@ -172,6 +172,7 @@ std::string pack_task(const TaskSpec& t) {
   if (!t.periodic.empty()) {
     w.text(t.periodic);
     w.raw(t.periodic_tol);
+    w.reals(t.initial.data(), t.initial.size());
   }
   return w.take();
 }
@@ -201,6 +202,7 @@ TaskSpec unpack_task(const std::string& bytes) {
   if (!r.at_end()) {
     t.periodic = r.text();
     t.periodic_tol = r.raw<double>();
+    t.initial = r.reals();
   }
   r.finish();
   return t;
@@ -218,6 +220,9 @@ std::string pack_run(const RunData& d) {
   w.reals(d.y.data(), static_cast<std::size_t>(d.y.size()));
   w.text(stats_to_bytes(d.stats));
   w.raw(d.wall);
+  // a periodic cycle's start state only: a transient run's bytes are those
+  // it had before
+  if (!d.state.empty()) w.reals(d.state.data(), d.state.size());
   return w.take();
 }
 
@@ -238,6 +243,7 @@ RunData unpack_run(const std::string& bytes) {
   d.y = Eigen::Map<const Mat>(y.data(), rows, cols);
   d.stats = stats_from_bytes(r.text());
   d.wall = r.raw<double>();
+  if (!r.at_end()) d.state = r.reals();
   r.finish();
   return d;
 }
@@ -245,6 +251,7 @@ RunData unpack_run(const std::string& bytes) {
 std::string task_fingerprint(const TaskSpec& t) {
   TaskSpec u = t;
   u.max_wall = 0.0;
+  u.initial.clear();
   std::uint64_t h = 1469598103934665603ull;  // FNV-1a, 64 bits
   for (unsigned char c : pack_task(u)) {
     h ^= c;

@@ -30,6 +30,11 @@ struct TaskSpec {
   /// periodic_tol: the rows are one converged cycle (run_periodic_case).
   std::string periodic;
   double periodic_tol = 3e-4;
+  /// A periodic task's first guess of the cycle's start state, every body's q
+  /// then v (a neighbour point's RunData::state: a warm start); empty = the
+  /// scene's own initial state. Left out of the fingerprint: it changes where
+  /// the search starts, not the cycle it converges to.
+  std::vector<double> initial;
 };
 
 /// Runs the task (run_case_repeated; with a limit, one run_case with that

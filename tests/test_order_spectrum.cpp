@@ -52,6 +52,19 @@ TEST(OrderSpectrum, RecoversKnownOrdersExactly) {
   const OrderSpectrum all = order_spectrum(th, y);
   EXPECT_EQ(all.cycles, 5);
   EXPECT_GT(std::abs(component(all, 1.5)), 1e-3);
+  // Which cycles were used, as the commands print it: the last 4 of 5 start
+  // one cycle (720 deg) after the record's first angle, 100 deg.
+  EXPECT_EQ(s.available, 5);
+  EXPECT_NEAR(s.first_angle, 820.0, 1e-12);
+  EXPECT_NEAR(s.last_angle, 100.0 + (5 * 360 - 1) * step, 1e-12);
+  EXPECT_EQ(cycles_used(s), "the last 4 of 5 whole 720-deg cycles (crank angle 820 to 3698 deg)");
+  const OrderSpectrum last = order_spectrum(th, y, 1);
+  EXPECT_EQ(cycles_used(last),
+            "the last 1 of 5 whole 720-deg cycles (crank angle 2980 to 3698 deg)");
+  // one cycle (evas periodic's record): the record's one cycle
+  const std::vector<double> th1(th.end() - 360, th.end()), y1(y.end() - 360, y.end());
+  EXPECT_EQ(cycles_used(order_spectrum(th1, y1)),
+            "the record's one whole 720-deg cycle (crank angle 2980 to 3698 deg)");
 }
 
 TEST(OrderSpectrum, RejectsBadGrids) {

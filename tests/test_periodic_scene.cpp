@@ -16,6 +16,7 @@
 #include "run/period.h"
 #include "run/periodic_folder.h"
 #include "run/settledness.h"
+#include "study/sweep_chains.h"
 #include "study/task.h"
 
 namespace evas {
@@ -281,12 +282,54 @@ TEST(PeriodicSweepTask, PacksExactlyAndRunsOneSteadyCycle) {
   EXPECT_NEAR(d.crank.front(), 0.0, 1e-9);
   EXPECT_NEAR(d.crank.back(), 719.0, 1e-9);
   EXPECT_EQ(d.y.cols(), 3);
+  // the cycle's start state comes back (every body's q then v), bit for bit
+  // through the worker's bytes
+  ASSERT_FALSE(d.state.empty());
+  EXPECT_EQ(unpack_run(pack_run(d)).state, d.state);
+  // a warm start from it: the same task (fingerprint), a search that starts
+  // at the converged cycle and needs far fewer steps
+  TaskSpec warm = t;
+  warm.initial = d.state;
+  EXPECT_EQ(task_fingerprint(warm), task_fingerprint(t));
+  EXPECT_EQ(unpack_task(pack_task(warm)).initial, d.state);
+  const RunData w = run_task(warm);
+  ASSERT_EQ(w.status, CaseStatus::completed) << w.message;
+  EXPECT_LT(w.stats.steps * 2, d.stats.steps);
+  for (long c = 0; c < 3; ++c)
+    EXPECT_LT((w.y.col(c) - d.y.col(c)).cwiseAbs().maxCoeff(),
+              1e-3 * d.y.col(c).cwiseAbs().maxCoeff() + 1e-9);
+  // a state of the wrong size fails the task and says so
+  warm.initial.pop_back();
+  const RunData wrong = run_task(warm);
+  EXPECT_EQ(wrong.status, CaseStatus::failed);
+  EXPECT_NE(wrong.message.find("initial state has"), std::string::npos) << wrong.message;
   // an unknown method fails the task with the names
   t.periodic = "shooting";
   const RunData bad = run_task(t);
   EXPECT_EQ(bad.status, CaseStatus::failed);
   EXPECT_NE(bad.message.find("projected, newton, anderson, fixed-point"), std::string::npos)
       << bad.message;
+}
+
+// The warm-start chains: one chain per worker, contiguous points, each point
+// after the first of its chain started by the point before it (same case).
+TEST(PeriodicSweepTask, WarmStartChainsAreAsWideAsTheRunner) {
+  // 8 points, 1 case, serial: one chain 0 <- 1 <- ... <- 7
+  std::vector<int> p = warm_predecessors(8, 1, 1);
+  EXPECT_EQ(p, (std::vector<int>{-1, 0, 1, 2, 3, 4, 5, 6}));
+  EXPECT_EQ(chain_waves(p), (std::vector<int>{0, 1, 2, 3, 4, 5, 6, 7}));
+  // two workers: two chains of 4, 4 waves of 2
+  p = warm_predecessors(8, 1, 2);
+  EXPECT_EQ(p, (std::vector<int>{-1, 0, 1, 2, -1, 4, 5, 6}));
+  EXPECT_EQ(chain_waves(p), (std::vector<int>{0, 1, 2, 3, 0, 1, 2, 3}));
+  // 3 points x 2 cases, 2 workers: a chain per case (task = point * 2 + case)
+  p = warm_predecessors(3, 2, 2);
+  EXPECT_EQ(p, (std::vector<int>{-1, -1, 0, 1, 2, 3}));
+  // more workers than points: every point a chain of its own
+  p = warm_predecessors(3, 1, 8);
+  EXPECT_EQ(p, (std::vector<int>{-1, -1, -1}));
+  EXPECT_TRUE(warm_predecessors(0, 1, 2).empty());
+  EXPECT_THROW(chain_waves({1, -1}), std::logic_error);
 }
 
 }  // namespace
