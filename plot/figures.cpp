@@ -132,18 +132,21 @@ class Record {
                      "{element: NAME}); journal bearings in this file: " +
                      (b.empty() ? std::string("none") : join(b)));
   }
-  // The first row of the last `cycles` whole cycles (0: every row).
+  // The first row of the last `cycles` whole cycles (0: every row). n rows of
+  // the uniform crank-angle grid cover n steps, as evas spectrum counts them:
+  // evas periodic's 0 .. 719 deg is one whole cycle, its last cycle 720 rows.
   Eigen::Index first_row(int cycles, double cycle) const {
     if (cycles <= 0 || !has_crank()) return 0;
     const Eigen::Index n = d_.values.rows();
     const double end = crank(n - 1), span = end - crank(0);
-    if (span < cycles * cycle * (1.0 - 1e-9))
-      throw InputError(path_ + ": the record covers " + num(span) +
+    const double step = n > 1 ? span / static_cast<double>(n - 1) : 0.0;
+    if (span + step < cycles * cycle * (1.0 - 1e-9))
+      throw InputError(path_ + ": the record covers " + num(span + step) +
                        " deg of crank angle, less than " + std::to_string(cycles) +
                        " cycle(s) of " + num(cycle) +
                        " deg (give --cycles 0 for the whole record, or run longer)");
     Eigen::Index r = n - 1;
-    while (r > 0 && crank(r - 1) >= end - cycles * cycle - 1e-9) --r;
+    while (r > 0 && crank(r - 1) > end - cycles * cycle + 0.5 * step) --r;
     return r;
   }
   // "FOLDER/results.h5": the run's folder names it

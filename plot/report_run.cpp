@@ -81,27 +81,22 @@ Run read_run(const std::string& path, int cycles) {
         " channels (" + listing(run.d.names) + "), journal bearings: " + listing(run.bearings));
   const Eigen::Index n = run.rows();
   const double span = run.at(n - 1, run.crank) - run.at(0, run.crank);
-  run.whole_cycles = static_cast<int>(std::floor(span / kCycle + 1e-9));
-  // One periodic cycle (evas periodic): 720 rows at 1 deg, 0 .. 719 deg, span
-  // one step short of 720 deg but n steps of it: the whole record is the cycle.
-  const bool one_periodic_cycle =
-      run.whole_cycles == 0 && n > 1 &&
-      span * static_cast<double>(n) / static_cast<double>(n - 1) >= kCycle - 1e-6;
-  if (cycles > run.whole_cycles && !(one_periodic_cycle && cycles <= 1))
+  // n rows of a uniform crank-angle grid cover n steps (a cycle of 720 rows
+  // at 1 deg is 0 .. 719 deg): whole cycles counted as evas spectrum counts
+  // them, so 0 .. 4319 deg holds six and evas periodic's 0 .. 719 deg one
+  const double step = n > 1 ? span / static_cast<double>(n - 1) : 0.0;
+  run.whole_cycles = static_cast<int>(std::floor((span + step) / kCycle + 1e-9));
+  if (cycles > run.whole_cycles)
     throw InputError("--cycles " + std::to_string(cycles) + ": " + path + " covers " +
                      fixed(span, 1) + " deg of crank angle, " + std::to_string(run.whole_cycles) +
                      " whole cycle(s) of 720 deg (give fewer, 0 for the whole record, or "
                      "run longer)");
   // the default, the last whole cycle, is that of evas spectrum, evas plot order and a sweep
   run.cycles = cycles >= 0 ? cycles : std::min(1, run.whole_cycles);
-  if (one_periodic_cycle) {
-    run.whole_cycles = 1;
-    run.cycles = 0;  // the whole record, which is the cycle
-  }
   if (run.cycles > 0) {
-    const double end = run.at(n - 1, run.crank);
+    const double first = run.at(n - 1, run.crank) - run.cycles * kCycle + 0.5 * step;
     Eigen::Index r = n - 1;
-    while (r > 0 && run.at(r - 1, run.crank) >= end - run.cycles * kCycle - 1e-9) --r;
+    while (r > 0 && run.at(r - 1, run.crank) > first) --r;
     run.r0 = r;
   }
   return run;

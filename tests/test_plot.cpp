@@ -99,12 +99,14 @@ TEST(Plot, PolarAndOrbitDataAreTheResultsOwnValues) {
   ASSERT_EQ(
       plot({"polar", engine_results().string(), "--element", "main2"}, tmp.path() / "p.png").code,
       0);
-  // the last cycle: the rows from crank angle end - 720 on
+  // the last cycle: the 720 rows after crank angle end - 720 (1-deg grid; a
+  // cycle's rows as evas spectrum counts them, not the row 720 deg back)
   const Eigen::Index n = d.values.rows();
   Eigen::Index r0 = n - 1;
   while (r0 > 0 &&
-         d.values(r0 - 1, col("crank_angle")) >= d.values(n - 1, col("crank_angle")) - 720 - 1e-9)
+         d.values(r0 - 1, col("crank_angle")) > d.values(n - 1, col("crank_angle")) - 720 + 0.5)
     --r0;
+  ASSERT_EQ(n - r0, 720);
   const auto shell = data_block(tmp.path() / "p.dat", 0),
              journal = data_block(tmp.path() / "p.dat", 1);
   ASSERT_EQ(shell.size(), static_cast<std::size_t>(n - r0));
