@@ -97,6 +97,11 @@ class Solver {
   Clock::time_point clock0_ = Clock::now();
   // projected
   Mat V_, L_, H_;
+  // the cycle the linearization was built from (its sampled states), kept for
+  // a finer one when a step from the coarse one leaves the model's states
+  std::vector<Vec> lq_, lv_;
+  std::vector<double> lt_;
+  bool refined_ = false;
 };
 
 Vec Solver::cycle(const Vec& x, bool main) {
@@ -229,9 +234,14 @@ void Solver::linearized_multipliers(PeriodicResult& res, const Linearization& li
 }
 
 void Solver::build_projection(PeriodicResult& res) {
+  if (!refined_) {
+    lt_ = st_;
+    lq_ = sq_;
+    lv_ = sv_;
+  }
   const Linearization lin = opt_.linearization == "averaged"
-                                ? averaged_linearization(p_, T_, st_, sq_, sv_)
-                                : stepped_linearization(p_, t0_, T_, st_, sq_, sv_, opt_.steps);
+                                ? averaged_linearization(p_, T_, lt_, lq_, lv_)
+                                : stepped_linearization(p_, t0_, T_, lt_, lq_, lv_, opt_.steps);
   const int N = 2 * n_;
   std::vector<int> pick;
   for (int j = 0; j < N; ++j) {
@@ -324,6 +334,7 @@ PeriodicResult Solver::solve(const Vec& q0, const Vec& v0) {
   Vec x_prev, g_prev;
   bool have_lin = false;
   bool mixed = false;  // gx is the first at the settings' tolerances, the history's coarse
+  std::string note;    // said of the next step
   while (true) {
     int worst = 0;
     const double d = defect(r, worst);
@@ -428,6 +439,8 @@ PeriodicResult Solver::solve(const Vec& q0, const Vec& v0) {
     }
     if (xn.size() == 0) break;  // the method cannot go on (message set)
     if (coarse_) step += " (coarse)";
+    step += note;
+    note.clear();
     mixed = to_fine;
     // A step that leaves the states the model takes (a journal outside its
     // clearance) is halved towards G(x), a state the integrator reached, up
@@ -449,6 +462,20 @@ PeriodicResult Solver::solve(const Vec& q0, const Vec& v0) {
         xn = gx + 0.5 * (xn - gx);
         step += ", halved";
       }
+    }
+    if (failed && opt_.method == PeriodicMethod::projected && !refined_ &&
+        opt_.linearization != "averaged" && opt_.steps < static_cast<int>(lt_.size())) {
+      // The step left the model's states even when halved: the stepped
+      // linearization was too coarse for the scene (the rigid-ground engine
+      // without its thrust bearing at 180 steps). Once more from the same
+      // iterate with one implicit-Euler step per sample of the cycle.
+      opt_.steps = static_cast<int>(lt_.size());
+      refined_ = true;
+      have_lin = false;
+      res.message.clear();
+      note = " (its linearization refined to " + std::to_string(opt_.steps) +
+             " steps after a step that left the model's states)";
+      continue;
     }
     if (failed) break;
     x = xn;

@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -14,7 +15,9 @@
 #include "io/results.h"
 #include "run/folder_run.h"
 #include "run/period.h"
+#include "run/periodic.h"
 #include "run/periodic_folder.h"
+#include "run/run.h"
 #include "run/settledness.h"
 #include "study/sweep_chains.h"
 #include "study/task.h"
@@ -174,6 +177,35 @@ TEST(PeriodicScene, EngineCycleMatchesALongTransientAndSaysSo) {
   EXPECT_TRUE(tr.settledness.settled())
       << tr.settledness.max_difference << " in " << tr.settledness.worst_channel;
   EXPECT_NE(slurp(tr.summary).find("\"settledness\""), std::string::npos);
+}
+
+// Case 2 without its thrust bearing and belt (validation/engine/scenes.sh's
+// case7.yaml): the projected method's first step from the 180-step stepped
+// linearization leaves the bearings' states even when halved four times; the
+// linearization refined to one step per sample converges (it failed before).
+TEST(PeriodicScene, ProjectedRefinesItsLinearizationWhenAStepLeavesTheStates) {
+  const fs::path dir = work_dir() / "case7";
+  fs::create_directories(dir);
+  const std::string cmd = std::string("sh '") + EVAS_SOURCE_DIR +
+                          "/validation/engine/scenes.sh' '" + dir.string() + "' > /dev/null";
+  ASSERT_EQ(std::system(cmd.c_str()), 0);
+  Scene scene = read_scene((dir / "case7.yaml").string());
+  const run::ScenePeriod per = run::scene_period(scene, "");
+  run::SceneRun sr(scene, scene.t_start + per.seconds);
+  Vec q0, v0;
+  sr.system().initial_state(q0, v0);
+  std::vector<double> samples;  // the rows of the cycle, 0 .. 719 deg
+  for (double t : sr.outputs().times())
+    if (t < scene.t_start + per.seconds * (1.0 - 1e-9)) samples.push_back(t);
+  const run::PeriodicResult r =
+      run::find_periodic(sr.system(), scene.t_start, per.seconds, q0, v0, scene.integrator,
+                         run::PeriodicOptions{}, samples);
+  ASSERT_TRUE(r.converged) << r.message;
+  bool refined = false;
+  for (const auto& it : r.iterations)
+    refined = refined || it.step.find("linearization refined to") != std::string::npos;
+  EXPECT_TRUE(refined);
+  EXPECT_LE(r.iterations.back().defect, 3e-4);
 }
 
 TEST(PeriodicScene, ASixCycleRunSaysItHasNotSettled) {

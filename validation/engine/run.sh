@@ -73,15 +73,10 @@ echo "order table (kN, Case 1 / Case 2): $out/orders.md"
 # The steady cycles of Case 1 and Case 2 (evas periodic, docs/periodic.md):
 # the same order table on them, and the change from the six-cycle runs' last
 # two cycles in % of the channel's largest order.
-# Case 7 (rigid ground without the thrust bearing) by Anderson's method: the
-# projected method's step on the slow subspace leaves the states the bearings
-# take there (the crank floats axially, unrestrained; docs/periodic.md).
 for c in 1 2 6 7; do
   eval scene=\$case$c
-  method=projected
-  [ "$c" = 7 ] && method=anderson
   /usr/bin/time -f "case $c, steady cycle: %e s wall" "$evas" periodic "$scene" \
-    --method $method --out "$out/case$c-steady" --csv --overwrite --quiet
+    --out "$out/case$c-steady" --csv --overwrite --quiet
   spectra "$out/case$c-steady" 1
 done
 {
