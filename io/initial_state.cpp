@@ -10,9 +10,7 @@
 
 namespace evas {
 
-namespace {
-
-std::string list_text(const double* x, int n) {
+std::string exact_list_text(const double* x, int n) {
   std::ostringstream o;
   o << "[";
   char buf[40];
@@ -24,7 +22,7 @@ std::string list_text(const double* x, int n) {
   return o.str();
 }
 
-}  // namespace
+namespace {}  // namespace
 
 std::string initial_state_text(const Model& model, const Vec& q, const Vec& v,
                                const std::string& scene, double t, const std::string& comment) {
@@ -40,8 +38,8 @@ std::string initial_state_text(const Model& model, const Vec& q, const Vec& v,
   for (const Body& b : model.bodies()) {
     YAML::Emitter bn;
     bn << b.name;
-    o << "  - {name: " << bn.c_str() << ",\n     q: " << list_text(q.data() + b.offset, b.n())
-      << ",\n     v: " << list_text(v.data() + b.offset, b.n()) << "}\n";
+    o << "  - {name: " << bn.c_str() << ",\n     q: " << exact_list_text(q.data() + b.offset, b.n())
+      << ",\n     v: " << exact_list_text(v.data() + b.offset, b.n()) << "}\n";
   }
   return o.str();
 }

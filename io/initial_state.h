@@ -19,6 +19,9 @@
 
 namespace evas {
 
+/// x[0 .. n) as a YAML flow list at 17 significant digits (reads back to the bit).
+std::string exact_list_text(const double* x, int n);
+
 /// The text of the state file: `comment` lines first (each prefixed "# "),
 /// the numbers at 17 significant digits (they read back to the bit).
 std::string initial_state_text(const Model& model, const Vec& q, const Vec& v,

@@ -1,32 +1,13 @@
 // A study's runs from one state (steady_start.h).
 #include "study/steady_start.h"
 
-#include <cstdio>
-
 #include "io/initial_state.h"
 #include "io/scene.h"
 #include "run/period.h"
+#include "study/report.h"
 #include "study/run_case.h"
 
 namespace evas::study {
-
-namespace {
-
-std::string digits(double x, int n) {
-  char b[40];
-  std::snprintf(b, sizeof b, "%.*g", n, x);
-  return b;
-}
-
-std::string full_digits(double x) { return digits(x, 17); }
-
-std::string flow_list(const double* x, int n) {
-  std::string s = "[";
-  for (int i = 0; i < n; ++i) s += (i ? ", " : "") + full_digits(x[i]);
-  return s + "]";
-}
-
-}  // namespace
 
 StartedFrom start_from(SceneSource& src, const SteadyStart& how, const std::function<bool()>& stop,
                        std::ostream* log) {
@@ -57,11 +38,11 @@ StartedFrom start_from(SceneSource& src, const SteadyStart& how, const std::func
         throw InputError("--steady: the scene's periodic state was not found: " + d.message);
       from.state = d.state;
       from.description = "the periodic state (evas periodic, projected, defect " +
-                         digits(how.tol, 3) + ", " + std::to_string(d.stats.steps) + " steps, " +
-                         digits(d.wall, 3) + " s)";
+                         gnum(how.tol, 3) + ", " + std::to_string(d.stats.steps) + " steps, " +
+                         gnum(d.wall, 3) + " s)";
     }
     from.description += ", one period: " + per.basis;
-    edits.push_back("time.end=" + full_digits(scene.t_start + per.seconds));
+    edits.push_back("time.end=" + gnum(scene.t_start + per.seconds, 17));
   }
   // every body's state in the text (the system's q then v, by the bodies' offsets)
   if (static_cast<long>(from.state.size()) != 2 * total)
@@ -70,8 +51,8 @@ StartedFrom start_from(SceneSource& src, const SteadyStart& how, const std::func
   const Vec q = Eigen::Map<const Vec>(from.state.data(), total);
   const Vec v = Eigen::Map<const Vec>(from.state.data() + total, total);
   for (const Body& b : model.bodies()) {
-    edits.push_back(b.name + ".initial.q=" + flow_list(q.data() + b.offset, b.n()));
-    edits.push_back(b.name + ".initial.v=" + flow_list(v.data() + b.offset, b.n()));
+    edits.push_back(b.name + ".initial.q=" + exact_list_text(q.data() + b.offset, b.n()));
+    edits.push_back(b.name + ".initial.v=" + exact_list_text(v.data() + b.offset, b.n()));
   }
   from.state_text =
       initial_state_text(model, q, v, scene.name, scene.t_start, "evas study: " + from.description);
