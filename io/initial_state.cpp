@@ -22,8 +22,6 @@ std::string exact_list_text(const double* x, int n) {
   return o.str();
 }
 
-namespace {}  // namespace
-
 std::string initial_state_text(const Model& model, const Vec& q, const Vec& v,
                                const std::string& scene, double t, const std::string& comment) {
   std::ostringstream o;
