@@ -50,7 +50,7 @@ demo: build
 # loads and their order spectra (docs/validation.md).
 VALIDATION_OUT ?= validation-out
 validate: build
-	./validation/engine/run.sh $(BUILD) $(VALIDATION_OUT)
+	CONVERGED=1 ./validation/engine/run.sh $(BUILD) $(VALIDATION_OUT)
 	./validation/engine/runup.sh $(BUILD) $(VALIDATION_OUT)/runup
 
 # Every test (C++, CTest; Python, pytest), then the Python package installed

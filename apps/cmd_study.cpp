@@ -11,6 +11,8 @@
 #include "apps/commands.h"
 #include "apps/mpi_runner.h"
 #include "integrators/settings.h"
+#include "study/budget.h"
+#include "study/budget_files.h"
 #include "study/report.h"
 #include "study/study.h"
 #include "study/sweep.h"
@@ -65,6 +67,9 @@ const char* kOverview =
     "  sweep SCENE           a grid of operating points (--sweep ITEM.KEY=VALUES,\n"
     "                        repeatable): every point's channels, order cuts,\n"
     "                        waterfall, Campbell diagram; writes sweep.h5/.csv/.md/.png\n"
+    "  budget SCENE          the error budget of the scene's answer: integration,\n"
+    "                        start-up, modal basis, element model, each measured with\n"
+    "                        its cost; writes budget.csv/.md, budget_sources.csv\n"
     "\n"
     "Every sub-command runs its cases on --jobs N local worker processes, or on the\n"
     "ranks of `mpirun -n N evas study ...`; the files are the same as a serial run's.\n"
@@ -467,6 +472,55 @@ int sweep(const std::vector<std::string>& args) {
   return finish(res.info, vm.count("quiet") > 0);
 }
 
+int budget(const std::vector<std::string>& args) {
+  po::options_description opts(
+      "usage: evas study budget SCENE.yaml [--richer ITEM.KEY=VALUE]... [options]\n\n"
+      "The error budget of the scene's answer as the scene sets it up (its integrator,\n"
+      "basis, elements, start): beside that base run, one variation per source of error,\n"
+      "each removing it, and per channel the difference over the base's last cycle:\n"
+      "  integration  rtol and atol (a fixed step) divided by --tighten;\n"
+      "  start-up     the last cycle against the periodic cycle (evas periodic), or\n"
+      "               against the cycle before when the search does not converge;\n"
+      "  basis        the scene on a richer basis: the --richer edits, else every mode\n"
+      "               of the body files that the scene's modes: options leave out;\n"
+      "  element      a finer element model (none in evas yet: said so).\n"
+      "With each, the variation's wall time and steps against the base's: what removing\n"
+      "that source costs; the largest error names the dominant source. Writes\n"
+      "DIR/budget.csv (per channel), budget_sources.csv and budget.md; `evas report`\n"
+      "shows the budget when budget_sources.csv lies beside the results file (give the\n"
+      "run's output folder as --out).\n\n"
+      "Exit codes: 0 completed, 1 bad input, 2 the base run failed, 128 + N stopped by\n"
+      "signal N (130: Ctrl-C).\n\noptions");
+  opts.add_options()("richer", po::value<std::vector<std::string>>()->composing(),
+                     "ITEM.KEY=VALUE: the richer basis, as --param (e.g. crank.file=rich.h5), "
+                     "repeatable")("tighten", po::value<double>()->default_value(100.0, "100"),
+                                   "the tighter integration: rtol and atol (or a fixed step) "
+                                   "divided by this");
+  add_common(opts);
+  po::variables_map vm;
+  if (parse_or_help(args, opts, vm)) return 0;
+  study::Options o = common_options(vm, "budget");
+  if (!vm["reference"].defaulted() || vm.count("reference-file"))
+    throw InputError("--reference and --reference-file do not apply to a budget");
+  if (o.start.steady) throw InputError("--steady does not apply: the budget measures the start-up");
+  study::BudgetOptions bo;
+  if (vm.count("richer")) bo.richer = vm["richer"].as<std::vector<std::string>>();
+  bo.tighten = vm["tighten"].as<double>();
+  if (o.out_dir.empty()) {
+    const study::SceneSource src = study::load_scene_source(o.scene, o.params, o.t_end);
+    o.out_dir = "out/budget-" + study::probe_scene(src).name;
+  }
+  SignalGuard guard;
+  try {
+    const auto res = study::budget(o, bo);
+    std::cout << study::budget_markdown(res);
+    return finish(res.info, vm.count("quiet") > 0);
+  } catch (const study::ReferenceFailed& e) {
+    std::cerr << "evas study budget: " << e.what() << "\n";
+    return reference_failed_code();
+  }
+}
+
 }  // namespace
 
 int cmd_study(const std::vector<std::string>& args) {
@@ -479,6 +533,7 @@ int cmd_study(const std::vector<std::string>& args) {
   if (sub[0] == "convergence") return convergence(sub);
   if (sub[0] == "stability") return stability(sub);
   if (sub[0] == "sweep") return sweep(sub);
+  if (sub[0] == "budget") return budget(sub);
   std::cerr << "evas study: unknown sub-command '" << sub[0] << "'\n\n" << kOverview;
   return 1;
 }

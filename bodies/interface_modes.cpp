@@ -14,12 +14,87 @@ namespace {
 /// as zero (the set cannot carry a moment about that axis); as in make_set_marker.
 constexpr double kPolarRel = 1e-10;
 
+/// Residual compliance below this fraction of the loads' whole compliance is
+/// taken as zero when ranking (the kept modes already carry that load).
+constexpr double kResidualFloor = 1e-9;
+
 /// M-inner products x^T M y of the columns (M = Ms (x) I3).
 Vec mass_norms2(const SpMat& Ms, const Mat& X) {
   const Mat MX = apply_mass(Ms, X);
   Vec n(X.cols());
   for (int j = 0; j < X.cols(); ++j) n[j] = X.col(j).dot(MX.col(j));
   return n;
+}
+
+/// Radius of gyration of a node set about its centroid (equal weights).
+double set_radius(const FeModel& fe, const std::vector<long>& set) {
+  std::unordered_map<long, int> row;
+  for (std::size_t i = 0; i < fe.node_ids.size(); ++i) row[fe.node_ids[i]] = static_cast<int>(i);
+  Vec3 c = Vec3::Zero();
+  for (long id : set) c += fe.s.row(row.at(id)).transpose();
+  c /= static_cast<double>(set.size());
+  double r2 = 0.0;
+  for (long id : set) r2 += (fe.s.row(row.at(id)).transpose() - c).squaredNorm();
+  return std::sqrt(r2 / static_cast<double>(set.size()));
+}
+
+/// Columns of G (unit M-norm first) with the components along Q removed (twice,
+/// classical Gram-Schmidt), then an M-orthonormal basis of what is left,
+/// dropping directions whose squared norm is below tol^2 (already spanned).
+Mat orthonormal_remainder(const SpMat& Ms, const Mat& Q, Mat G, double tol,
+                          const std::string& who) {
+  if (G.cols() == 0) return Mat(G.rows(), 0);
+  {
+    const Vec n2 = mass_norms2(Ms, G);
+    for (int j = 0; j < G.cols(); ++j) {
+      if (!(n2[j] > 0.0)) throw InputError(who + "a static shape is zero (no load on the set?)");
+      G.col(j) /= std::sqrt(n2[j]);
+    }
+  }
+  for (int pass = 0; pass < 2; ++pass) G -= Q * (Q.transpose() * apply_mass(Ms, G));
+  Mat Gram = G.transpose() * apply_mass(Ms, G);
+  Gram = (0.5 * (Gram + Gram.transpose())).eval();
+  Eigen::SelfAdjointEigenSolver<Mat> gs(Gram);
+  std::vector<int> keep;
+  for (int k = 0; k < gs.eigenvalues().size(); ++k)
+    if (gs.eigenvalues()[k] > tol * tol) keep.push_back(k);
+  Mat B(G.rows(), static_cast<int>(keep.size()));
+  for (int j = 0; j < static_cast<int>(keep.size()); ++j)
+    B.col(j) = G * gs.eigenvectors().col(keep[j]) / std::sqrt(gs.eigenvalues()[keep[j]]);
+  B -= Q * (Q.transpose() * apply_mass(Ms, B));
+  return B;
+}
+
+/// The static shapes of the principal load combinations, ranked by the
+/// residual flexibility they carry (see InterfaceOptions::rank_tolerance).
+Mat ranked_shapes(const FeModel& fe, const Mat& P, const Mat& F, const Mat& U,
+                  const std::vector<double>& scale, const InterfaceOptions& opt,
+                  const std::string& who) {
+  Mat Ur = U;
+  for (int pass = 0; pass < 2; ++pass) Ur -= P * (P.transpose() * apply_mass(fe.Ms, Ur));
+  const Vec w = Eigen::Map<const Vec>(scale.data(), static_cast<Eigen::Index>(scale.size()));
+  Mat Fr = w.asDiagonal() * (F.transpose() * Ur) * w.asDiagonal();
+  Fr = (0.5 * (Fr + Fr.transpose())).eval();
+  Eigen::SelfAdjointEigenSolver<Mat> es(Fr);
+  const Vec& s = es.eigenvalues();  // ascending
+  const double smax = s.size() > 0 ? s[s.size() - 1] : 0.0;
+  // What the kept modes miss below this fraction of the loads' whole compliance
+  // is round-off (their shapes would be noise): nothing to add.
+  Mat Fc = w.asDiagonal() * (F.transpose() * U) * w.asDiagonal();
+  Fc = (0.5 * (Fc + Fc.transpose())).eval();
+  const double floor =
+      kResidualFloor * Eigen::SelfAdjointEigenSolver<Mat>(Fc).eigenvalues().maxCoeff();
+  if (!std::isfinite(smax)) throw InputError(who + "the residual flexibility is not finite");
+  std::vector<int> keep;
+  for (Eigen::Index k = s.size() - 1; k >= 0; --k) {
+    if (!(s[k] > floor) || s[k] < opt.rank_tolerance * smax) break;
+    if (opt.max_count > 0 && static_cast<int>(keep.size()) >= opt.max_count) break;
+    keep.push_back(static_cast<int>(k));
+  }
+  Mat G(Ur.rows(), static_cast<int>(keep.size()));
+  for (std::size_t j = 0; j < keep.size(); ++j)
+    G.col(static_cast<int>(j)) = Ur * (w.asDiagonal() * es.eigenvectors().col(keep[j]));
+  return G;
 }
 
 }  // namespace
@@ -130,13 +205,33 @@ ModalBody add_interface_modes(const FeModel& fe, const ModalBody& body,
   if (!(opt.damping_ratio >= 0.0)) throw InputError(who + "damping_ratio must be >= 0");
   if (!(opt.independence_tol > 0.0 && opt.independence_tol < 1.0))
     throw InputError(who + "independence_tol must be in (0, 1)");
+  if (!(opt.rank_tolerance >= 0.0 && opt.rank_tolerance < 1.0))
+    throw InputError(who + "rank_tolerance must be in [0, 1)");
+  if (opt.max_count < 0 || opt.krylov_blocks < 0)
+    throw InputError(who + "max_count and krylov_blocks must be >= 0");
+  if (!opt.loads.empty() && opt.loads.size() != interface_sets.size())
+    throw InputError(who + "one load mask per set is needed");
   if (interface_sets.empty()) return body;
 
-  // 1. Loads of all sets, 2. inertia-relief static shapes.
+  // 1. Loads of all sets (the masked columns), 2. inertia-relief static shapes.
   std::vector<Mat> blocks;
+  std::vector<double> scale;  // ranking weight of each column (moments: the set's radius)
   int cols = 0;
-  for (const auto& set : interface_sets) {
-    blocks.push_back(interface_loads(fe, set, opt.moments));
+  for (std::size_t k = 0; k < interface_sets.size(); ++k) {
+    const InterfaceLoadMask mask =
+        opt.loads.empty() ? InterfaceLoadMask{{true, true, true}, opt.moments} : opt.loads[k];
+    const Mat all = interface_loads(fe, interface_sets[k], mask.moments);
+    std::vector<int> pick;
+    for (int c = 0; c < all.cols(); ++c)
+      if (c >= 3 || mask.force[c]) pick.push_back(c);
+    if (pick.empty()) throw InputError(who + "a set has no loads selected");
+    Mat b(all.rows(), static_cast<int>(pick.size()));
+    const double r = pick.back() >= 3 ? set_radius(fe, interface_sets[k]) : 1.0;
+    for (std::size_t j = 0; j < pick.size(); ++j) {
+      b.col(static_cast<int>(j)) = all.col(pick[j]);
+      scale.push_back(pick[j] >= 3 ? r : 1.0);
+    }
+    blocks.push_back(std::move(b));
     cols += static_cast<int>(blocks.back().cols());
   }
   Mat F(3 * N, cols);
@@ -147,30 +242,22 @@ ModalBody add_interface_modes(const FeModel& fe, const ModalBody& body,
   }
   const InertiaReliefSolver irs(fe);
   Mat G = irs.solve(F);
-
-  // 3. Unit M-norm, then remove the kept modes (twice, classical Gram-Schmidt).
-  {
-    const Vec n2 = mass_norms2(fe.Ms, G);
-    for (int j = 0; j < G.cols(); ++j) {
-      if (!(n2[j] > 0.0)) throw InputError(who + "a static shape is zero (no load on the set?)");
-      G.col(j) /= std::sqrt(n2[j]);
-    }
-  }
   const Mat& P = body.modes;
-  for (int pass = 0; pass < 2; ++pass) G -= P * (P.transpose() * apply_mass(fe.Ms, G));
-  // Drop what is already spanned: Gram matrix of the remainders, keep directions
-  // whose squared norm exceeds tol^2 (shapes had unit norm before the projection).
-  Mat Gram = G.transpose() * apply_mass(fe.Ms, G);
-  Gram = (0.5 * (Gram + Gram.transpose())).eval();
-  Eigen::SelfAdjointEigenSolver<Mat> gs(Gram);
-  std::vector<int> keep;
-  for (int k = 0; k < gs.eigenvalues().size(); ++k)
-    if (gs.eigenvalues()[k] > opt.independence_tol * opt.independence_tol) keep.push_back(k);
-  if (keep.empty()) return body;
-  Mat B(3 * N, static_cast<int>(keep.size()));
-  for (int j = 0; j < static_cast<int>(keep.size()); ++j)
-    B.col(j) = G * gs.eigenvectors().col(keep[j]) / std::sqrt(gs.eigenvalues()[keep[j]]);
-  B -= P * (P.transpose() * apply_mass(fe.Ms, B));
+  if (opt.rank_tolerance > 0.0 || opt.max_count > 0)
+    G = ranked_shapes(fe, P, F, G, scale, opt, who);
+
+  // 3. M-orthonormal remainders after the kept modes; then Wilson's blocks.
+  Mat B = orthonormal_remainder(fe.Ms, P, G, opt.independence_tol, who);
+  if (B.cols() == 0) return body;
+  Mat X = B;
+  for (int blk = 0; blk < opt.krylov_blocks && X.cols() > 0; ++blk) {
+    Mat Q(P.rows(), P.cols() + B.cols());
+    Q << P, B;
+    X = orthonormal_remainder(fe.Ms, Q, irs.solve(apply_mass(fe.Ms, X)), opt.independence_tol, who);
+    Mat grown(B.rows(), B.cols() + X.cols());
+    grown << B, X;
+    B = std::move(grown);
+  }
 
   // 4. Rayleigh-Ritz on the new subspace.
   Mat Kr = B.transpose() * (fe.K * B);

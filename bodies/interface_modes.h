@@ -31,8 +31,33 @@
 
 namespace evas {
 
+/// Which unit loads of one set generate its static shapes: forces along the
+/// body axes x, y, z and the set's moments. A journal loaded radially needs two
+/// forces, not six loads.
+struct InterfaceLoadMask {
+  bool force[3] = {true, true, true};
+  bool moments = true;
+};
+
 struct InterfaceOptions {
-  bool moments = true;         ///< also the unit moments of each set (else forces only)
+  bool moments = true;  ///< also the unit moments of each set (else forces only)
+  /// Per set (same order as the sets) the loads to use; empty: the three forces
+  /// and, with `moments`, the moments of every set.
+  std::vector<InterfaceLoadMask> loads;
+  /// > 0: rank the static shapes by the residual flexibility they carry at the
+  /// loaded points (MacNeal 1971, Rubin 1975): the eigen-decomposition of
+  /// F^T (U - P P^T M U), the loads' compliance that the kept modes P miss, and
+  /// keep the principal load combinations whose residual compliance is at least
+  /// this fraction of the largest. Moments are scaled by the set's radius so
+  /// that they compare with forces. 0: keep every independent shape (the
+  /// unranked static correction).
+  double rank_tolerance = 0.0;
+  /// > 0: keep at most this many ranked shapes (the largest residual compliance).
+  int max_count = 0;
+  /// Load-dependent Ritz vectors (Wilson, Yuan & Dickens 1982): after the static
+  /// shapes X0, this many further blocks X_{b+1} = K^+ M X_b (inertia relief),
+  /// each M-orthogonalised against the kept modes and the blocks before.
+  int krylov_blocks = 0;
   double damping_ratio = 0.0;  ///< modal damping ratio of the added modes
   /// A correction shape whose M-norm, after removing the kept modes, is below
   /// this fraction of its norm before is dropped (already in their span).

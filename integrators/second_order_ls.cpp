@@ -16,8 +16,16 @@ namespace evas {
 namespace {
 // Dense up to this size: a dense LU of the engine's full 72 x 72 matrix is
 // several times faster than KLU's on the same entries; above it the cubic cost
-// of a dense LU loses to KLU's on the body-block pattern.
+// of a dense LU loses to KLU's on a sparse pattern.
 constexpr int kDenseSize = 200;
+// ... and up to kDenseFullSize when the pattern is this full already: modal
+// bodies with static-correction modes couple every coordinate of a body with
+// every other through the bearings (the engine on its 204-coordinate basis:
+// 99 % of the entries), and KLU on such a pattern spends its time on the
+// sparse bookkeeping; measured on that basis (IDA rtol 1e-7, six cycles):
+// 15.4 s dense against 47.9 s KLU (docs/engine-bodies.md).
+constexpr int kDenseFullSize = 800;
+constexpr double kDenseFill = 0.25;
 // Solves on one dense factorization before its inverse is formed (see solve_matrix).
 constexpr int kInvertAfter = 40;
 }  // namespace
@@ -51,7 +59,9 @@ SecondOrderSolver::SecondOrderSolver(const SpMat& pattern)
   Ss_.resize(n_, n_);
   Ss_.setFromTriplets(trip.begin(), trip.end());
   Ss_.makeCompressed();
-  dense_ = n_ <= kDenseSize;
+  dense_ = n_ <= kDenseSize ||
+           (n_ <= kDenseFullSize &&
+            static_cast<double>(Ss_.nonZeros()) >= kDenseFill * static_cast<double>(n_) * n_);
   rhs_ = Vec::Zero(n_);
   xq_ = Vec::Zero(n_);
   if (dense_) {

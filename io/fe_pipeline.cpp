@@ -81,6 +81,50 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
+/// An integer >= lo.
+int count(const Yaml& y, const YAML::Node& n, const std::string& key, int lo) {
+  const double v = y.number(n, key);
+  if (v < lo || v != std::floor(v) || v > 1e6)
+    y.fail(n, "'" + key + "' must be an integer >= " + std::to_string(lo));
+  return static_cast<int>(v);
+}
+
+/// `interface_sets: [NAME | {set: NAME, loads: [x, y, z, moments]}]`.
+void read_interface_sets(const Yaml& y, const YAML::Node& list, PipelineParams& p) {
+  if (!list.IsSequence())
+    y.fail(list, "'interface_sets' must be a list of node-set names or {set, loads} maps");
+  bool masked = false;
+  std::vector<InterfaceLoadMask> masks;
+  for (const auto& e : list) {
+    InterfaceLoadMask mask;
+    if (e.IsMap()) {
+      y.keys(e, "an interface_sets entry", {"set", "loads"});
+      if (!e["set"]) y.fail(e, "an interface_sets entry needs 'set' (a node-set name)");
+      p.interface_sets.push_back(y.text(e["set"], "set"));
+      if (e["loads"]) {
+        if (!e["loads"].IsSequence() || e["loads"].size() == 0)
+          y.fail(e["loads"], "'loads' must be a list of x, y, z, moments");
+        mask = InterfaceLoadMask{{false, false, false}, false};
+        for (const auto& l : e["loads"]) {
+          const std::string w = y.text(l, "loads");
+          if (w == "x" || w == "y" || w == "z")
+            mask.force[w[0] - 'x'] = true;
+          else if (w == "moments")
+            mask.moments = true;
+          else
+            y.fail(l, "unknown load '" + w + "' for set '" + p.interface_sets.back() +
+                          "' (known: x, y, z, moments)");
+        }
+        masked = true;
+      }
+    } else {
+      p.interface_sets.push_back(y.text(e, "interface_sets"));
+    }
+    masks.push_back(mask);
+  }
+  if (masked) p.interface.loads = masks;
+}
+
 }  // namespace
 
 PipelineParams read_pipeline_params(const std::string& yaml_path, const std::string& out_dir) {
@@ -135,13 +179,21 @@ PipelineParams read_pipeline_params(const std::string& yaml_path, const std::str
   if (root["modes"]) {
     const YAML::Node m = root["modes"];
     y.keys(m, "modes",
-           {"elastic", "max_frequency", "damping_ratio", "keep_rigid", "solver", "interface_sets"});
-    if (m["interface_sets"]) {
-      if (!m["interface_sets"].IsSequence())
-        y.fail(m["interface_sets"], "'interface_sets' must be a list of node-set names");
-      for (const auto& n : m["interface_sets"])
-        p.interface_sets.push_back(y.text(n, "interface_sets"));
+           {"elastic", "max_frequency", "damping_ratio", "keep_rigid", "solver", "interface_sets",
+            "interface_tolerance", "interface_count", "ritz_blocks"});
+    if (m["interface_sets"]) read_interface_sets(y, m["interface_sets"], p);
+    if (m["interface_tolerance"]) {
+      const double t = y.number(m["interface_tolerance"], "interface_tolerance");
+      if (!(t > 0.0 && t < 1.0))
+        y.fail(m["interface_tolerance"], "'interface_tolerance' must be in (0, 1)");
+      p.interface.rank_tolerance = t;
     }
+    if (m["interface_count"])
+      p.interface.max_count = count(y, m["interface_count"], "interface_count", 1);
+    if (m["ritz_blocks"]) p.interface.krylov_blocks = count(y, m["ritz_blocks"], "ritz_blocks", 0);
+    if ((m["interface_tolerance"] || m["interface_count"] || m["ritz_blocks"]) &&
+        p.interface_sets.empty())
+      y.fail(m, "'interface_tolerance', 'interface_count' and 'ritz_blocks' need 'interface_sets'");
     if (m["elastic"]) {
       const double e = y.number(m["elastic"], "elastic");
       if (e < 0 || e != std::floor(e)) y.fail(m["elastic"], "'elastic' must be an integer >= 0");
@@ -332,7 +384,7 @@ PipelineResult run_pipeline(const PipelineParams& p, bool verbose) {
     if (res.body.node_sets.count(name)) res.body.surfaces.emplace(name, std::move(s));
   if (!p.interface_sets.empty())
     stage("interface modes", [&] {
-      InterfaceOptions io;
+      InterfaceOptions io = p.interface;
       io.damping_ratio = p.build.damping_ratio;
       res.body = add_interface_modes_by_name(res.fe, res.body, p.interface_sets, io);
     });

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "bodies/body_builder.h"
+#include "bodies/interface_modes.h"
 #include "bodies/reduce_body.h"
 #include "io/calculix.h"
 
@@ -29,6 +30,10 @@ struct PipelineParams {
   BuildOptions build;        ///< modes kept, cut-off, damping, solver
   /// Node sets that get static correction (interface) modes, e.g. bearing journals.
   std::vector<std::string> interface_sets;
+  /// Their loads, ranking, count and Ritz blocks (`interface_sets` entries
+  /// `{set: NAME, loads: [y, z]}`, `interface_tolerance`, `interface_count`,
+  /// `ritz_blocks`); damping_ratio is taken from `build`.
+  InterfaceOptions interface;
   bool ccx_eigen = false;  ///< also run ccx's *FREQUENCY (frd/dat) for comparison
   int ccx_modes = 0;       ///< modes asked from ccx (0: 6 + elastic + 4, at least 16)
   std::string work_dir;    ///< where meshes, decks, logs go (relative to the output folder)

@@ -12,6 +12,7 @@
 #include "model/types.h"
 #include "plot/figures.h"
 #include "plot/gnuplot.h"
+#include "plot/report_budget.h"
 #include "plot/report_html.h"
 #include "plot/report_run.h"
 #include "post/cycle_difference.h"
@@ -461,6 +462,7 @@ ReportResult write_report(const std::string& results, const fs::path& dir, const
                  "are beside it in this folder.");
   Drawer draw(run, dir, out);
   summary_section(run, page);
+  budget_section(run.path, page);
   bearings_section(run, draw, page, out);
   loads_section(run, draw, page, out);
   if (!run.bearings.empty()) friction_section(run, draw, page, out);

@@ -259,3 +259,144 @@ TEST(InterfaceModes, SeveralSetsAndRedundancy) {
   store_full_body_data(bsi);
   EXPECT_NO_THROW(bsi.validate());
 }
+
+namespace {
+
+/// Residual compliance of a body at the loads F: F^T (U_exact - U_modal), the
+/// static compliance its elastic modes miss (symmetric positive semidefinite,
+/// since a Ritz basis under-estimates compliance).
+Mat missing_compliance(const DenseExact& ex, const ModalBody& b, const Mat& F) {
+  Mat E(F.cols(), F.cols());
+  Mat D(F.rows(), F.cols());
+  for (int j = 0; j < F.cols(); ++j) D.col(j) = ex.solve(F.col(j)) - modal_static(b, F.col(j));
+  E = F.transpose() * D;
+  return 0.5 * (E + E.transpose());
+}
+
+double largest_eigenvalue(const Mat& A) {
+  return Eigen::SelfAdjointEigenSolver<Mat>(A).eigenvalues().maxCoeff();
+}
+
+ModalBody six_mode_beam(const FeModel& fe) {
+  BuildOptions bo;
+  bo.num_elastic = 6;
+  bo.solver = "dense";
+  return build_modal_body("beam", fe, bo);
+}
+
+}  // namespace
+
+// A journal loads its set radially: two forces, not six loads. With the mask the
+// set adds two shapes, a load in their span is exact and an axial one is not.
+TEST(InterfaceModes, LoadMaskKeepsTheLoadedDirections) {
+  const FeModel fe = make_truss_beam(slender_truss());
+  const DenseExact ex(fe);
+  const ModalBody b = six_mode_beam(fe);
+  const auto& s2 = fe.node_sets.at("section2");
+  InterfaceOptions io;
+  io.loads = {InterfaceLoadMask{{false, true, true}, false}};
+  const ModalBody bi = add_interface_modes(fe, b, {s2}, io);
+  ASSERT_EQ(bi.num_modes(), b.num_modes() + 2);
+  check_basis(fe, bi, ex.K, ex.M, ex.R);
+  const Mat F = interface_loads(fe, s2, false);
+  const Vec fy = 700.0 * F.col(1) - 200.0 * F.col(2);
+  const Vec uy = ex.solve(fy);
+  EXPECT_LT((modal_static(bi, fy) - uy).norm(), 1e-8 * uy.norm());
+  const Vec ux = ex.solve(F.col(0));
+  EXPECT_GT((modal_static(bi, F.col(0)) - ux).norm(), 1e-3 * ux.norm());
+  // Bad masks are refused.
+  io.loads = {InterfaceLoadMask{{false, false, false}, false}};
+  EXPECT_THROW(add_interface_modes(fe, b, {s2}, io), InputError);
+  io.loads = {InterfaceLoadMask{}, InterfaceLoadMask{}};
+  EXPECT_THROW(add_interface_modes(fe, b, {s2}, io), InputError);
+}
+
+// Ranked by residual flexibility (MacNeal 1971; Rubin 1975): keeping the k
+// principal load combinations with the largest residual compliance leaves
+// exactly the others' compliance missing, the (k+1)-th largest as its largest.
+TEST(InterfaceModes, RankingKeepsTheLargestResidualFlexibility) {
+  const FeModel fe = make_truss_beam(slender_truss());
+  const DenseExact ex(fe);
+  const ModalBody b = six_mode_beam(fe);
+  const std::vector<std::vector<long>> sets = {
+      fe.node_sets.at("section2"), fe.node_sets.at("section20"), fe.node_sets.at("section38")};
+  Mat F(3 * fe.s.rows(), 9);
+  for (int k = 0; k < 3; ++k) F.middleCols(3 * k, 3) = interface_loads(fe, sets[k], false);
+  const Vec s0 = Eigen::SelfAdjointEigenSolver<Mat>(missing_compliance(ex, b, F)).eigenvalues();
+  ASSERT_GT(s0[8], 0.0);
+  InterfaceOptions io;
+  io.moments = false;
+  for (int k : {1, 3, 5}) {
+    io.max_count = k;
+    io.rank_tolerance = 0.0;
+    const ModalBody bk = add_interface_modes(fe, b, sets, io);
+    ASSERT_EQ(bk.num_modes(), b.num_modes() + k);
+    check_basis(fe, bk, ex.K, ex.M, ex.R);
+    // s0 ascending: the largest left is s0[8 - k].
+    EXPECT_NEAR(largest_eigenvalue(missing_compliance(ex, bk, F)), s0[8 - k], 1e-6 * s0[8])
+        << "k = " << k;
+  }
+  // By tolerance: every combination whose residual compliance is >= tol * max is kept.
+  io.max_count = 0;
+  io.rank_tolerance = 0.5 * (s0[5] + s0[6]) / s0[8];
+  const ModalBody bt = add_interface_modes(fe, b, sets, io);
+  EXPECT_EQ(bt.num_modes(), b.num_modes() + 3);
+  EXPECT_LT(largest_eigenvalue(missing_compliance(ex, bt, F)), io.rank_tolerance * s0[8]);
+  // A body that already carries every load gets nothing (its residual
+  // flexibility is round-off, whose shapes are in the span of its modes).
+  io.max_count = 0;
+  io.rank_tolerance = 1e-3;
+  InterfaceOptions all;
+  all.moments = false;
+  const ModalBody full = add_interface_modes(fe, b, sets, all);
+  EXPECT_EQ(add_interface_modes(fe, full, sets, io).num_modes(), full.num_modes());
+  io.rank_tolerance = 1.5;
+  EXPECT_THROW(add_interface_modes(fe, b, sets, io), InputError);
+}
+
+// Load-dependent Ritz vectors (E. L. Wilson, M.-W. Yuan and J. M. Dickens,
+// "Dynamic analysis by direct superposition of Ritz vectors", Earthquake Eng.
+// Struct. Dyn. 10, 1982): the blocks K^+ M X span the Krylov sequence of the
+// load, and the forced response to the load below the first resonance converges
+// with each block.
+TEST(InterfaceModes, RitzBlocksConvergeTheForcedResponse) {
+  const FeModel fe = make_truss_beam(slender_truss());
+  const DenseExact ex(fe);
+  BuildOptions bo;
+  bo.num_elastic = 2;
+  bo.solver = "dense";
+  const ModalBody b = build_modal_body("beam", fe, bo);
+  const auto& s38 = fe.node_sets.at("section38");
+  const Mat F = interface_loads(fe, s38, false);
+  const Vec f = F.col(1) + 0.5 * F.col(2);
+  const Vec feq = f - ex.M * (ex.R * (ex.R.transpose() * f));
+  // Between the 2nd and 3rd elastic eigenvalue of the full model (a basis of two
+  // eigenmodes misses the resonances above).
+  const double w2 = 0.5 * b.eigenvalues[b.num_modes() - 1];
+  const Vec exact = Eigen::PartialPivLU<Mat>(ex.K - w2 * ex.M).solve(feq);
+  InterfaceOptions io;
+  io.moments = false;
+  io.loads = {InterfaceLoadMask{{false, true, true}, false}};
+  double last = 1e300;
+  for (int blocks = 0; blocks <= 3; ++blocks) {
+    io.krylov_blocks = blocks;
+    const ModalBody br = add_interface_modes(fe, b, {s38}, io);
+    EXPECT_EQ(br.num_modes(), b.num_modes() + 2 * (blocks + 1));
+    check_basis(fe, br, ex.K, ex.M, ex.R);
+    Vec u = Vec::Zero(feq.size());
+    for (int k = 0; k < br.num_modes(); ++k)
+      if (br.kinds[k] == ModeKind::Elastic)
+        u += br.modes.col(k) * (br.modes.col(k).dot(feq) / (br.eigenvalues[k] - w2));
+    const double err = (u - exact).norm() / exact.norm();
+    std::printf("Ritz blocks %d: forced response error %.3e\n", blocks, err);
+    EXPECT_LT(err, 0.2 * last) << "blocks " << blocks;
+    last = err;
+    if (blocks == 1) {
+      // The second block holds K^+ M K^+ f (inertia relief), up to round-off.
+      const Vec x = ex.solve(ex.M * ex.solve(feq));
+      const Vec r = x - br.modes * (br.modes.transpose() * (ex.M * x));
+      EXPECT_LT(std::sqrt(r.dot(ex.M * r) / x.dot(ex.M * x)), 1e-8);
+    }
+  }
+  EXPECT_LT(last, 1e-4);
+}

@@ -116,9 +116,19 @@ TEST(SecondOrderSolver, DensePathManySolvesOnOneFactorization) {
 }
 
 TEST(SecondOrderSolver, KluPathMatchesFullSolve) {
-  SecondOrderSolver so(band_pattern(400, 2));  // n > 200: KLU
+  SecondOrderSolver so(band_pattern(400, 2));  // n > 200 and sparse: KLU
   EXPECT_FALSE(so.dense());
   expect_matches_full(so, 3e4, 2e-5, 3, "KLU");
+}
+
+// Above 200 a pattern at least a quarter full (modal bodies with static
+// correction modes) takes the dense path too, up to 800; a banded one does not.
+TEST(SecondOrderSolver, FullPatternAbove200IsDense) {
+  SecondOrderSolver so(band_pattern(300, 60));  // (2 * 60 + 1) / 300: 37 % full
+  EXPECT_TRUE(so.dense());
+  expect_matches_full(so, 3e4, 2e-5, 3, "dense, n = 300");
+  EXPECT_FALSE(SecondOrderSolver(band_pattern(300, 20)).dense());   // 14 % full
+  EXPECT_FALSE(SecondOrderSolver(band_pattern(900, 450)).dense());  // above 800
 }
 
 TEST(SecondOrderSolver, SingularMatrixIsAFailedFactorization) {

@@ -50,7 +50,9 @@ done
 
 # Order table: amplitude [kN] of each main bearing's load, Case 1 / Case 2.
 orders="0.5 1 1.5 2 3 4 6"
-{
+# order_table DIR1 DIR2: each main-bearing channel's amplitude [kN] at each
+# order, DIR1's / DIR2's spectra, as a Markdown table
+order_table() {
   printf "| channel |"
   for o in $orders; do printf " order %s |" "$o"; done
   printf "\n|---|"
@@ -60,15 +62,55 @@ orders="0.5 1 1.5 2 3 4 6"
     for ch in fx fy; do
       printf "| main%s.%s |" "$b" "$ch"
       for o in $orders; do
-        a1=$(awk -F, -v o="$o" 'NR > 1 && $1 == o {printf "%.1f", $2 / 1000}' "$out/case1/spectrum_main$b.$ch.csv")
-        a2=$(awk -F, -v o="$o" 'NR > 1 && $1 == o {printf "%.1f", $2 / 1000}' "$out/case2/spectrum_main$b.$ch.csv")
+        a1=$(awk -F, -v o="$o" 'NR > 1 && $1 == o {printf "%.1f", $2 / 1000}' "$1/spectrum_main$b.$ch.csv")
+        a2=$(awk -F, -v o="$o" 'NR > 1 && $1 == o {printf "%.1f", $2 / 1000}' "$2/spectrum_main$b.$ch.csv")
         printf " %s / %s |" "$a1" "$a2"
       done
       printf "\n"
     done
   done
-} > "$out/orders.md"
+}
+order_table "$out/case1" "$out/case2" > "$out/orders.md"
 echo "order table (kN, Case 1 / Case 2): $out/orders.md"
+
+# The converged basis (converged.yaml; docs/engine-bodies.md, "A converged
+# basis"): its bodies built once into $out/bodies (about 1.5 and 3 min, 1.3 GB
+# peak), Cases 1 and 2 on them, their order table beside the paper's basis and
+# the difference of the main-bearing loads (whole last cycle, and its engine
+# orders up to 12) relative to each channel's half peak-to-peak. Only with
+# CONVERGED=1 (`make validate` sets it; `make demo` leaves it out: the bodies
+# take 4-5 min to build).
+if [ "${CONVERGED:-0}" = 1 ]; then
+bodies=$out/bodies
+mkdir -p "$bodies"
+for b in crank_2k5_if block_conv; do
+  if [ ! -f "$bodies/$b.h5" ]; then
+    /usr/bin/time -f "body $b: %e s wall, %M kB peak" "$evas" modal build \
+      "$dir/../bodies/convergence/$b.yaml" --out "$bodies" > "$bodies/$b.log"
+  fi
+done
+for c in 1 2; do
+  eval scene=\$case$c
+  /usr/bin/time -f "case $c, converged basis: %e s wall, %M kB peak" "$evas" run "$scene" \
+    --param crank.file="$bodies/crank_2k5_if.h5" --param block.file="$bodies/block_conv.h5" \
+    --out "$out/case$c-converged" --csv --overwrite
+  spectra "$out/case$c-converged" 2
+done
+order_table "$out/case1-converged" "$out/case2-converged" > "$out/orders_converged.md"
+echo "order table on the converged basis (kN, Case 1 / Case 2): $out/orders_converged.md"
+{
+  for c in 1 2; do
+    echo "Case $c, converged basis against the paper's, whole last cycle:"
+    python3 "$dir/bearing_difference.py" "$out/case$c-converged/results.csv" "$out/case$c/results.csv"
+    echo
+    echo "Case $c, orders up to 12:"
+    python3 "$dir/bearing_difference.py" --orders 12 "$out/case$c-converged/results.csv" \
+      "$out/case$c/results.csv"
+    echo
+  done
+} > "$out/converged_difference.md"
+echo "the paper's basis against the converged one: $out/converged_difference.md"
+fi
 
 # The steady cycles of Case 1 and Case 2 (evas periodic, docs/periodic.md):
 # the same order table on them, and the change from the six-cycle runs' last

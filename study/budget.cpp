@@ -1,0 +1,266 @@
+// The error budget of a scene's answer, see budget.h.
+#include "study/budget.h"
+
+#include <yaml-cpp/yaml.h>
+
+#include <cmath>
+#include <map>
+#include <sstream>
+#include <string>
+
+#include "integrators/settings.h"
+#include "study/budget_files.h"
+#include "study/report.h"
+#include "study/study_common.h"
+
+namespace evas::study {
+
+namespace {
+
+using detail::kNaN;
+
+/// Error of every channel of y against ref over `rows` (NaN for a channel
+/// that is constant in ref).
+std::vector<double> channel_errors(const Mat& y, const Mat& ref, const std::vector<int>& rows,
+                                   Norm norm) {
+  std::vector<double> e(static_cast<std::size_t>(ref.cols()), kNaN);
+  for (Eigen::Index c = 0; c < ref.cols(); ++c)
+    e[static_cast<std::size_t>(c)] = relative_error(Mat(y.col(c)), Mat(ref.col(c)), rows, norm);
+  return e;
+}
+
+void set_errors(BudgetSource& src, std::vector<double> e) {
+  src.channel_error = std::move(e);
+  src.error = kNaN;
+  src.channel = -1;
+  for (std::size_t c = 0; c < src.channel_error.size(); ++c) {
+    const double x = src.channel_error[c];
+    if (std::isfinite(x) && (src.channel < 0 || x > src.error)) {
+      src.error = x;
+      src.channel = static_cast<int>(c);
+    }
+  }
+  src.measured = src.channel >= 0;
+  if (!src.measured && src.note.empty()) src.note = "every channel is constant in the variation";
+}
+
+void not_measured(BudgetSource& src, std::size_t channels, const std::string& why) {
+  src.measured = false;
+  src.note = why;
+  src.channel_error.assign(channels, kNaN);
+}
+
+/// A run of a variation: completed with every output row, else the reason.
+std::string run_problem(const RunData& d, long rows) {
+  if (d.status != CaseStatus::completed) return "the run failed: " + d.message;
+  if (d.rows() < rows)
+    return "the run gave " + std::to_string(d.rows()) + " of " + std::to_string(rows) +
+           " output rows";
+  return "";
+}
+
+/// The source measured as the base against the variation's run `v` (its
+/// rows the base's output times), or not measured when `v` failed.
+void against(BudgetSource& src, const RunData& v, const RunData& base, const std::vector<int>& rows,
+             Norm norm, const std::string& what, const std::string& how) {
+  if (const std::string p = run_problem(v, base.rows()); !p.empty()) {
+    not_measured(src, static_cast<std::size_t>(base.y.cols()), what + ": " + p);
+    return;
+  }
+  src.note = how;
+  src.wall = v.wall;
+  src.steps = v.stats.steps;
+  set_errors(src, channel_errors(base.y, v.y, rows, norm));
+}
+
+/// Key of a crank angle within the 720-deg cycle (1e-6 deg resolution).
+long long cycle_key(double deg) {
+  double a = std::fmod(deg, 720.0);
+  if (a < 0) a += 720.0;
+  long long k = std::llround(a * 1e6);
+  return k == 720000000LL ? 0 : k;
+}
+
+void measure_startup(const Options& opt, const detail::Setup& s, const RunData& base,
+                     const std::vector<int>& rows, BudgetSource& src) {
+  const std::size_t nc = s.channels.size();
+  if (s.info.crank_channel < 0) {
+    not_measured(src, nc, "the output is not on a crank-angle grid: no cycle to settle");
+    return;
+  }
+  detail::say(opt, "budget: start-up, the periodic cycle (evas periodic, projected)");
+  const RunData p =
+      run_periodic_case(s.src, s.info.integrator, s.channels, "projected", opt.start.tol, opt.stop);
+  if (p.status == CaseStatus::completed && p.rows() > 0) {
+    std::map<long long, Eigen::Index> at;
+    for (Eigen::Index r = 0; r < p.rows(); ++r)
+      at[cycle_key(p.crank[static_cast<std::size_t>(r)])] = r;
+    std::vector<Eigen::Index> rb, rp;
+    for (int r : rows) {
+      const auto it = at.find(cycle_key(base.crank[static_cast<std::size_t>(r)]));
+      if (it != at.end()) rb.push_back(r), rp.push_back(it->second);
+    }
+    if (!rb.empty()) {
+      Mat yb(static_cast<Eigen::Index>(rb.size()), base.y.cols()), yp(yb.rows(), yb.cols());
+      for (std::size_t i = 0; i < rb.size(); ++i) {
+        yb.row(static_cast<Eigen::Index>(i)) = base.y.row(rb[i]);
+        yp.row(static_cast<Eigen::Index>(i)) = p.y.row(rp[i]);
+      }
+      std::vector<int> all(rb.size());
+      for (std::size_t i = 0; i < all.size(); ++i) all[i] = static_cast<int>(i);
+      src.variation =
+          "the periodic cycle (evas periodic, projected, defect " + gnum(opt.start.tol, 3) + ")";
+      src.note = "the base's last cycle against the periodic cycle, " + std::to_string(rb.size()) +
+                 " rows matched by crank angle";
+      src.wall = p.wall;
+      src.steps = p.stats.steps;
+      set_errors(src, channel_errors(yb, yp, all, s.norm));
+      return;
+    }
+  }
+  // Fallback: the last cycle against the one before.
+  const std::string why = p.status == CaseStatus::completed ? "no crank angle of the periodic "
+                                                              "cycle matched the output's"
+                                                            : p.message;
+  std::vector<int> two;
+  try {
+    two = window_rows(Window{Window::Kind::LastCycles, 2.0, 0, 0}, base.time, base.crank);
+  } catch (const InputError&) {
+    not_measured(src, nc,
+                 "the periodic search failed (" + why + ") and the output holds no two cycles");
+    return;
+  }
+  const std::size_t half = two.size() / 2;
+  const Eigen::Index n = static_cast<Eigen::Index>(half);
+  Mat prev(n, base.y.cols()), last(n, base.y.cols());
+  for (Eigen::Index i = 0; i < n; ++i) {
+    prev.row(i) = base.y.row(two[static_cast<std::size_t>(i)]);
+    last.row(i) = base.y.row(two[two.size() - half + static_cast<std::size_t>(i)]);
+  }
+  std::vector<int> all(half);
+  for (std::size_t i = 0; i < half; ++i) all[i] = static_cast<int>(i);
+  src.variation = "the cycle before the last";
+  src.note = "the periodic search failed (" + why + "): the last cycle against the one before";
+  src.wall = 0.0;
+  src.steps = 0;
+  set_errors(src, channel_errors(last, prev, all, s.norm));
+}
+
+}  // namespace
+
+std::string without_mode_cuts(const std::string& text, std::string& changed) {
+  changed.clear();
+  YAML::Node root = YAML::Load(text);
+  const YAML::Node bodies = root["bodies"];
+  if (!bodies || !bodies.IsSequence()) return text;
+  for (YAML::Node b : bodies) {
+    YAML::Node m = b["modes"];
+    if (!m || !m.IsMap()) continue;
+    bool cut = false;
+    for (const char* k : {"max_frequency", "elastic", "quasi_static_above"})
+      if (m[k]) cut = m.remove(k) || cut;
+    if (cut) changed += (changed.empty() ? "" : ", ") + b["name"].as<std::string>("?");
+  }
+  if (changed.empty()) return text;
+  YAML::Emitter e;
+  e << root;
+  return e.c_str();
+}
+
+BudgetResult budget(const Options& opt_in, const BudgetOptions& bo) {
+  if (!(bo.tighten > 1.0) || !std::isfinite(bo.tighten))
+    throw InputError("--tighten must be a number > 1");
+  if (!opt_in.window.empty())
+    throw InputError("--window does not apply to a budget: it measures the last cycle");
+  Options opt = opt_in;
+  detail::Setup s = detail::prepare(opt);
+  BudgetResult res;
+  res.info = detail::make_info(s);
+  res.units = s.units;
+  const IntegratorSettings base_set = s.info.integrator;
+  res.base_label = settings_label(base_set);
+  const long nrows = static_cast<long>(s.info.times.size());
+  const std::size_t nc = s.channels.size();
+
+  detail::say(opt, "budget: the base run (" + res.base_label + ")");
+  const RunData base = run_case(s.src, base_set, s.channels, nullptr, opt.stop);
+  if (const std::string p = run_problem(base, nrows); !p.empty())
+    throw ReferenceFailed("the base run (" + res.base_label + "): " + p);
+  res.base_wall = base.wall;
+  res.base_steps = base.stats.steps;
+  const Window w = s.info.crank_channel >= 0 ? Window{Window::Kind::LastCycles, 1.0, 0, 0}
+                                             : Window{Window::Kind::All, 1.0, 0, 0};
+  const std::vector<int> rows = window_rows(w, base.time, base.crank);
+  res.info.window = w.text();
+
+  // integration
+  BudgetSource integ;
+  integ.name = "integration";
+  IntegratorSettings tight = base_set;
+  // 12 digits: the label reads 1e-11, not 1.0000000000000001e-11
+  const auto divided = [&](double x) { return std::stod(gnum(x / bo.tighten, 12)); };
+  if (takes_fixed_steps(tight)) {
+    tight.step = divided(tight.step);
+  } else {
+    tight.rtol = divided(tight.rtol);
+    tight.atol = divided(tight.atol);
+  }
+  integ.variation = settings_label(tight);
+  detail::say(opt, "budget: integration (" + integ.variation + ")");
+  against(integ, run_case(s.src, tight, s.channels, nullptr, opt.stop), base, rows, s.norm,
+          "the tighter run",
+          "the base against the integrator tightened " + gnum(bo.tighten, 3) + "x");
+  res.sources.push_back(integ);
+
+  // start-up
+  BudgetSource start;
+  start.name = "start-up";
+  if (detail::stopped(opt))
+    not_measured(start, nc, "interrupted");
+  else
+    measure_startup(opt, s, base, rows, start);
+  res.sources.push_back(start);
+
+  // basis
+  BudgetSource basis;
+  basis.name = "basis";
+  SceneSource rich = s.src;
+  if (!bo.richer.empty()) {
+    rich = edited(s.src, bo.richer, "--richer");
+    basis.variation = "--richer " + detail::join(bo.richer, " --richer ");
+  } else {
+    std::string changed;
+    rich.text = without_mode_cuts(s.src.text, changed);
+    rich.edited = true;
+    if (changed.empty())
+      basis.note =
+          "the scene keeps every mode of its body files: give --richer ITEM.KEY=VALUE (e.g. "
+          "crank.file=richer.h5, a body file with more modes) for a richer basis";
+    else
+      basis.variation = "every mode of the body files of " + changed;
+  }
+  if (basis.variation.empty() || detail::stopped(opt)) {
+    not_measured(basis, nc, basis.note.empty() ? "interrupted" : basis.note);
+  } else {
+    detail::say(opt, "budget: basis (" + basis.variation + ")");
+    against(basis, run_case(rich, base_set, s.channels, nullptr, opt.stop), base, rows, s.norm,
+            "the richer basis", "the base against the same run on the richer basis");
+  }
+  res.sources.push_back(basis);
+
+  // element models
+  BudgetSource elem;
+  elem.name = "element";
+  not_measured(elem, nc, "no element of the scene has a finer model in evas");
+  res.sources.push_back(elem);
+
+  for (std::size_t k = 0; k < res.sources.size(); ++k)
+    if (res.sources[k].measured &&
+        (res.dominant < 0 || res.sources[k].error > res.sources[res.dominant].error))
+      res.dominant = static_cast<int>(k);
+  res.info.interrupted = detail::stopped(opt);
+  write_budget_files(s.out, res, res.info);
+  return res;
+}
+
+}  // namespace evas::study
