@@ -36,10 +36,10 @@ TEST(ConvergedScene, IsTheEngineOnOtherBodies) {
     if (engine[i] != conv[i]) differ.push_back(conv[i]);
   ASSERT_EQ(differ.size(), 3u);
   EXPECT_EQ(differ[0], "name: engine-converged-case1");
-  EXPECT_EQ(differ[1], "    file: ../../validation-out/bodies/crank_2k5_if.h5");
+  EXPECT_EQ(differ[1], "    file: ../../validation-out/bodies/crank_conv.h5");
   EXPECT_EQ(differ[2], "    file: ../../validation-out/bodies/block_conv.h5");
   // the recipes run.sh builds them from
-  for (const char* recipe : {"crank_2k5_if.yaml", "block_conv.yaml"})
+  for (const char* recipe : {"crank_conv.yaml", "block_conv.yaml"})
     EXPECT_TRUE(std::filesystem::exists(kDir + "/bodies/convergence/" + recipe)) << recipe;
 }
 

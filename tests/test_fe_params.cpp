@@ -77,3 +77,17 @@ TEST(FeParams, InterfaceLoadsRankingAndRitzBlocks) {
   std::error_code ec;
   fs::remove_all(dir, ec);
 }
+
+// Every recipe of validation/bodies/ (docs/engine-bodies.md) reads: its keys,
+// sets and loads are valid, whatever body it builds.
+TEST(FeParams, EveryValidationRecipeReads) {
+  int n = 0;
+  for (const auto& e :
+       fs::recursive_directory_iterator(std::string(EVAS_SOURCE_DIR) + "/validation/bodies")) {
+    if (e.path().extension() != ".yaml") continue;
+    EXPECT_NO_THROW(read_pipeline_params(e.path().string(), fs::temp_directory_path().string()))
+        << e.path();
+    ++n;
+  }
+  EXPECT_GE(n, 10);
+}

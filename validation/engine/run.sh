@@ -83,7 +83,7 @@ echo "order table (kN, Case 1 / Case 2): $out/orders.md"
 if [ "${CONVERGED:-0}" = 1 ]; then
 bodies=$out/bodies
 mkdir -p "$bodies"
-for b in crank_2k5_if block_conv; do
+for b in crank_conv block_conv; do
   if [ ! -f "$bodies/$b.h5" ]; then
     /usr/bin/time -f "body $b: %e s wall, %M kB peak" "$evas" modal build \
       "$dir/../bodies/convergence/$b.yaml" --out "$bodies" > "$bodies/$b.log"
@@ -92,7 +92,7 @@ done
 for c in 1 2; do
   eval scene=\$case$c
   /usr/bin/time -f "case $c, converged basis: %e s wall, %M kB peak" "$evas" run "$scene" \
-    --param crank.file="$bodies/crank_2k5_if.h5" --param block.file="$bodies/block_conv.h5" \
+    --param crank.file="$bodies/crank_conv.h5" --param block.file="$bodies/block_conv.h5" \
     --out "$out/case$c-converged" --csv --overwrite
   spectra "$out/case$c-converged" 2
 done
