@@ -495,7 +495,10 @@ int budget(const std::vector<std::string>& args) {
                      "ITEM.KEY=VALUE: the richer basis, as --param (e.g. crank.file=rich.h5), "
                      "repeatable")("tighten", po::value<double>()->default_value(100.0, "100"),
                                    "the tighter integration: rtol and atol (or a fixed step) "
-                                   "divided by this");
+                                   "divided by this")(
+      "orders", po::value<double>(),
+      "compare the engine orders up to N only (the last cycle's Fourier series; a "
+      "crank-angle grid)");
   add_common(opts);
   po::variables_map vm;
   if (parse_or_help(args, opts, vm)) return 0;
@@ -506,6 +509,7 @@ int budget(const std::vector<std::string>& args) {
   study::BudgetOptions bo;
   if (vm.count("richer")) bo.richer = vm["richer"].as<std::vector<std::string>>();
   bo.tighten = vm["tighten"].as<double>();
+  if (vm.count("orders")) bo.orders = vm["orders"].as<double>();
   if (o.out_dir.empty()) {
     const study::SceneSource src = study::load_scene_source(o.scene, o.params, o.t_end);
     o.out_dir = "out/budget-" + study::probe_scene(src).name;

@@ -224,7 +224,9 @@ ModalBody add_interface_modes(const FeModel& fe, const ModalBody& body,
     std::vector<int> pick;
     for (int c = 0; c < all.cols(); ++c)
       if (c >= 3 || mask.force[c]) pick.push_back(c);
-    if (pick.empty()) throw InputError(who + "a set has no loads selected");
+    if (pick.empty())
+      throw InputError(who + "set " + std::to_string(k + 1) + " of " +
+                       std::to_string(interface_sets.size()) + " has no loads selected");
     Mat b(all.rows(), static_cast<int>(pick.size()));
     const double r = pick.back() >= 3 ? set_radius(fe, interface_sets[k]) : 1.0;
     for (std::size_t j = 0; j < pick.size(); ++j) {
@@ -305,6 +307,11 @@ ModalBody add_interface_modes_by_name(const FeModel& fe, const ModalBody& body,
     if (it == fe.node_sets.end())
       throw InputError("body '" + body.name + "': interface modes: no node set '" + name + "'");
     sets.push_back(it->second);
+    const std::size_t k = sets.size() - 1;
+    if (k < opt.loads.size() && !opt.loads[k].moments &&
+        !(opt.loads[k].force[0] || opt.loads[k].force[1] || opt.loads[k].force[2]))
+      throw InputError("body '" + body.name + "': interface modes: set '" + name +
+                       "' has no loads selected");
   }
   return add_interface_modes(fe, body, sets, opt);
 }

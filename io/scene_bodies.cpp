@@ -32,7 +32,11 @@ void SceneReader::read_body(const Node& b, std::size_t i, Model& model) {
   const Node zeta_node = b["damping_ratio"];
   const double zeta = zeta_node ? number_in(zeta_node, item, "damping_ratio", 0.0, 10.0) : 0.0;
   if (modes)
-    check_keys(modes, item + " modes", {"rigid", "elastic", "max_frequency", "quasi_static_above"});
+    check_keys(modes, item + " modes",
+               {"rigid", "elastic", "max_frequency", "quasi_static_above", "damping_above"});
+  if (modes && modes["damping_above"] && gen)
+    fail(modes["damping_above"], item + " modes",
+         "'damping_above' applies to body files ('file') only");
 
   std::shared_ptr<const ModalBody> data;
   const Node tol_node = b["check_tolerance"];
@@ -76,6 +80,8 @@ void SceneReader::read_body(const Node& b, std::size_t i, Model& model) {
           body.damping[k] = body.kinds[k] == ModeKind::Elastic
                                 ? 2.0 * zeta * std::sqrt(std::max(0.0, body.eigenvalues[k]))
                                 : 0.0;
+      if (modes && modes["damping_above"])
+        damp_above(modes["damping_above"], item + " modes", body);
       body.validate();  // once per cached body, not once per parse
       return body;
     };
@@ -113,6 +119,19 @@ void SceneReader::read_body(const Node& b, std::size_t i, Model& model) {
       const auto v = numbers(init["v"], it, "v", n);
       body.v0 = Eigen::Map<const Vec>(v.data(), body.n());
     }
+  }
+}
+
+void SceneReader::damp_above(const Node& node, const std::string& mi, ModalBody& body) {
+  const std::string it = mi + " damping_above";
+  expect_map(node, it);
+  check_keys(node, it, {"frequency", "ratio"});
+  const double f0 = number_in(require(node, "frequency", it), it, "frequency", 0.0, 1e300, true);
+  const double zeta = number_in(require(node, "ratio", it), it, "ratio", 0.0, 10.0);
+  for (int k = 0; k < body.num_modes(); ++k) {
+    if (body.kinds[k] != ModeKind::Elastic) continue;
+    const double w = std::sqrt(std::max(0.0, body.eigenvalues[k]));
+    if (w / (2.0 * M_PI) > f0) body.damping[k] = 2.0 * zeta * w;
   }
 }
 

@@ -199,6 +199,9 @@ class SceneReader {
   std::shared_ptr<ModalBody> generate_body(const Node& g, const Node& modes,
                                            const std::string& name, const std::string& item,
                                            double zeta, bool has_zeta);
+  /// modes: damping_above: {frequency: F, ratio: Z}: modal damping 2 Z omega for
+  /// every elastic mode above F Hz (docs/scenes.md).
+  void damp_above(const Node& node, const std::string& mi, ModalBody& body);
   /// Body::quasi_static from `modes: {quasi_static_above: HZ}`: the elastic
   /// modes above HZ (each must be damped).
   void set_quasi_static(const Node& node, const std::string& mi, Body& body);

@@ -19,13 +19,58 @@ namespace {
 
 using detail::kNaN;
 
+}  // namespace
+
+Vec low_orders(const Vec& x, double orders) {
+  const Eigen::Index n = x.size();
+  Vec out = Vec::Zero(n);
+  const int kmax = static_cast<int>(std::floor(2.0 * orders + 1e-9));
+  for (int k = 0; k <= kmax && 2 * k <= n; ++k) {
+    double re = 0.0, im = 0.0;
+    for (Eigen::Index i = 0; i < n; ++i) {
+      const double a = 2.0 * M_PI * k * static_cast<double>(i) / static_cast<double>(n);
+      re += x[i] * std::cos(a);
+      im -= x[i] * std::sin(a);
+    }
+    const double w = (k == 0 || 2 * k == n) ? 1.0 : 2.0;
+    for (Eigen::Index i = 0; i < n; ++i) {
+      const double a = 2.0 * M_PI * k * static_cast<double>(i) / static_cast<double>(n);
+      out[i] += w * (re * std::cos(a) - im * std::sin(a)) / static_cast<double>(n);
+    }
+  }
+  return out;
+}
+
+namespace {
+
 /// Error of every channel of y against ref over `rows` (NaN for a channel
-/// that is constant in ref).
+/// that is constant in ref). With orders > 0 the rows are one cycle (a last
+/// row one period after the first is left out) and both are first reduced to
+/// their engine orders up to `orders`; the amplitude stays ref's own.
 std::vector<double> channel_errors(const Mat& y, const Mat& ref, const std::vector<int>& rows,
-                                   Norm norm) {
+                                   Norm norm, double orders) {
   std::vector<double> e(static_cast<std::size_t>(ref.cols()), kNaN);
-  for (Eigen::Index c = 0; c < ref.cols(); ++c)
-    e[static_cast<std::size_t>(c)] = relative_error(Mat(y.col(c)), Mat(ref.col(c)), rows, norm);
+  if (orders <= 0.0) {
+    for (Eigen::Index c = 0; c < ref.cols(); ++c)
+      e[static_cast<std::size_t>(c)] = relative_error(Mat(y.col(c)), Mat(ref.col(c)), rows, norm);
+    return e;
+  }
+  const std::size_t n = rows.size() % 2 == 1 ? rows.size() - 1 : rows.size();  // 721 -> 720
+  const std::vector<double> amp = amplitudes(ref, rows);
+  for (Eigen::Index c = 0; c < ref.cols(); ++c) {
+    const double a = amp[static_cast<std::size_t>(c)];
+    if (!(a > 0.0)) continue;
+    Vec yc(static_cast<Eigen::Index>(n)), rc(yc.size());
+    for (std::size_t i = 0; i < n; ++i) {
+      yc[static_cast<Eigen::Index>(i)] = y(rows[i], c);
+      rc[static_cast<Eigen::Index>(i)] = ref(rows[i], c);
+    }
+    const Vec d = low_orders(yc, orders) - low_orders(rc, orders);
+    e[static_cast<std::size_t>(c)] =
+        (norm == Norm::Max ? d.cwiseAbs().maxCoeff()
+                           : std::sqrt(d.squaredNorm() / static_cast<double>(d.size()))) /
+        a;
+  }
   return e;
 }
 
@@ -62,7 +107,7 @@ std::string run_problem(const RunData& d, long rows) {
 /// The source measured as the base against the variation's run `v` (its
 /// rows the base's output times), or not measured when `v` failed.
 void against(BudgetSource& src, const RunData& v, const RunData& base, const std::vector<int>& rows,
-             Norm norm, const std::string& what, const std::string& how) {
+             Norm norm, double orders, const std::string& what, const std::string& how) {
   if (const std::string p = run_problem(v, base.rows()); !p.empty()) {
     not_measured(src, static_cast<std::size_t>(base.y.cols()), what + ": " + p);
     return;
@@ -70,7 +115,7 @@ void against(BudgetSource& src, const RunData& v, const RunData& base, const std
   src.note = how;
   src.wall = v.wall;
   src.steps = v.stats.steps;
-  set_errors(src, channel_errors(base.y, v.y, rows, norm));
+  set_errors(src, channel_errors(base.y, v.y, rows, norm, orders));
 }
 
 /// Key of a crank angle within the 720-deg cycle (1e-6 deg resolution).
@@ -82,7 +127,7 @@ long long cycle_key(double deg) {
 }
 
 void measure_startup(const Options& opt, const detail::Setup& s, const RunData& base,
-                     const std::vector<int>& rows, BudgetSource& src) {
+                     const std::vector<int>& rows, double orders, BudgetSource& src) {
   const std::size_t nc = s.channels.size();
   if (s.info.crank_channel < 0) {
     not_measured(src, nc, "the output is not on a crank-angle grid: no cycle to settle");
@@ -114,7 +159,7 @@ void measure_startup(const Options& opt, const detail::Setup& s, const RunData& 
                  " rows matched by crank angle";
       src.wall = p.wall;
       src.steps = p.stats.steps;
-      set_errors(src, channel_errors(yb, yp, all, s.norm));
+      set_errors(src, channel_errors(yb, yp, all, s.norm, orders));
       return;
     }
   }
@@ -143,7 +188,7 @@ void measure_startup(const Options& opt, const detail::Setup& s, const RunData& 
   src.note = "the periodic search failed (" + why + "): the last cycle against the one before";
   src.wall = 0.0;
   src.steps = 0;
-  set_errors(src, channel_errors(last, prev, all, s.norm));
+  set_errors(src, channel_errors(last, prev, all, s.norm, orders));
 }
 
 }  // namespace
@@ -170,6 +215,8 @@ std::string without_mode_cuts(const std::string& text, std::string& changed) {
 BudgetResult budget(const Options& opt_in, const BudgetOptions& bo) {
   if (!(bo.tighten > 1.0) || !std::isfinite(bo.tighten))
     throw InputError("--tighten must be a number > 1");
+  if (!(bo.orders >= 0.0) || !std::isfinite(bo.orders))
+    throw InputError("--orders must be a number >= 0");
   if (!opt_in.window.empty())
     throw InputError("--window does not apply to a budget: it measures the last cycle");
   Options opt = opt_in;
@@ -179,6 +226,7 @@ BudgetResult budget(const Options& opt_in, const BudgetOptions& bo) {
   res.units = s.units;
   const IntegratorSettings base_set = s.info.integrator;
   res.base_label = settings_label(base_set);
+  res.orders = bo.orders;
   const long nrows = static_cast<long>(s.info.times.size());
   const std::size_t nc = s.channels.size();
 
@@ -188,6 +236,8 @@ BudgetResult budget(const Options& opt_in, const BudgetOptions& bo) {
     throw ReferenceFailed("the base run (" + res.base_label + "): " + p);
   res.base_wall = base.wall;
   res.base_steps = base.stats.steps;
+  if (bo.orders > 0.0 && s.info.crank_channel < 0)
+    throw InputError("--orders needs a crank-angle grid (output: {grid: crank-angle})");
   const Window w = s.info.crank_channel >= 0 ? Window{Window::Kind::LastCycles, 1.0, 0, 0}
                                              : Window{Window::Kind::All, 1.0, 0, 0};
   const std::vector<int> rows = window_rows(w, base.time, base.crank);
@@ -208,7 +258,7 @@ BudgetResult budget(const Options& opt_in, const BudgetOptions& bo) {
   integ.variation = settings_label(tight);
   detail::say(opt, "budget: integration (" + integ.variation + ")");
   against(integ, run_case(s.src, tight, s.channels, nullptr, opt.stop), base, rows, s.norm,
-          "the tighter run",
+          bo.orders, "the tighter run",
           "the base against the integrator tightened " + gnum(bo.tighten, 3) + "x");
   res.sources.push_back(integ);
 
@@ -218,7 +268,7 @@ BudgetResult budget(const Options& opt_in, const BudgetOptions& bo) {
   if (detail::stopped(opt))
     not_measured(start, nc, "interrupted");
   else
-    measure_startup(opt, s, base, rows, start);
+    measure_startup(opt, s, base, rows, bo.orders, start);
   res.sources.push_back(start);
 
   // basis
@@ -244,7 +294,7 @@ BudgetResult budget(const Options& opt_in, const BudgetOptions& bo) {
   } else {
     detail::say(opt, "budget: basis (" + basis.variation + ")");
     against(basis, run_case(rich, base_set, s.channels, nullptr, opt.stop), base, rows, s.norm,
-            "the richer basis", "the base against the same run on the richer basis");
+            bo.orders, "the richer basis", "the base against the same run on the richer basis");
   }
   res.sources.push_back(basis);
 

@@ -14,7 +14,9 @@
 //
 // Each error is the study's measure (study/measure.h) over the base's last
 // cycle (or the whole output without a crank-angle grid), relative to the
-// variation's amplitude of the channel. With each source its cost: the
+// variation's amplitude of the channel; with --orders N, of the last cycle's
+// engine orders up to N only (the low orders the loads' sharing sets, apart
+// from the fast film events). With each source its cost: the
 // variation's wall time and steps, and their ratio to the base's, i.e. what
 // removing that source would cost. The source with the largest error
 // dominates. A source that cannot be measured on the scene is not measured,
@@ -32,6 +34,9 @@ namespace evas::study {
 struct BudgetOptions {
   std::vector<std::string> richer;  ///< ITEM.KEY=VALUE edits of the richer basis
   double tighten = 100.0;           ///< rtol, atol (or a fixed step) divided by this
+  /// > 0: the errors of the engine orders up to this only (the last cycle's
+  /// Fourier series of base and variation; a crank-angle grid)
+  double orders = 0.0;
 };
 
 struct BudgetSource {
@@ -53,8 +58,14 @@ struct BudgetResult {
   long base_steps = 0;
   std::string base_label;
   std::vector<BudgetSource> sources;
-  int dominant = -1;  ///< index of the source with the largest error (-1: none measured)
+  int dominant = -1;    ///< index of the source with the largest error (-1: none measured)
+  double orders = 0.0;  ///< BudgetOptions::orders
 };
+
+/// One 720-deg cycle of samples at equal angle steps (no repeated end point)
+/// kept up to engine order `orders`: its Fourier series, harmonic k of the
+/// cycle being order k / 2.
+Vec low_orders(const Vec& x, double orders);
 
 /// Runs the budget (Options as for every study: --param, --channels, --out,
 /// --quiet; the window is always the base's last cycle). Throws ReferenceFailed

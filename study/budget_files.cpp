@@ -32,9 +32,11 @@ std::string budget_markdown(const BudgetResult& r) {
      << "- scene: `" << r.info.scene_path << "`\n"
      << "- base run: " << r.base_label << ", " << gnum(r.base_wall, 3) << " s wall, "
      << r.base_steps << " steps\n"
-     << "- error of a channel: " << r.info.error_definition << "\n"
-     << "- window: "
-     << (r.info.window == "all" ? "every output time" : "the base's " + r.info.window) << "\n\n"
+     << "- error of a channel: " << r.info.error_definition << " (the base's output)"
+     << (r.orders > 0.0 ? "; of the last cycle's engine orders up to " + gnum(r.orders, 4) +
+                              " only (its Fourier series)"
+                        : std::string())
+     << "\n\n"
      << "| source | error (largest channel) | channel | wall [s] | wall / base | steps | "
         "steps / base | measured against |\n"
      << "|---|---:|---|---:|---:|---:|---:|---|\n";

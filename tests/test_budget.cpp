@@ -107,6 +107,30 @@ TEST(Budget, EveryMeasurableSourceOfTheEngine) {
   fs::remove_all(out);
 }
 
+// --orders N keeps the Fourier series of one cycle up to engine order N
+// (harmonic k of the 720-deg cycle is order k / 2); a time grid refuses it.
+TEST(Budget, LowOrdersOfACycle) {
+  const int n = 720;
+  Vec low(n), high(n);
+  for (int i = 0; i < n; ++i) {
+    const double th = 4.0 * M_PI * i / n;  // crank angle [rad] over two revolutions
+    low[i] = 3.0 + 2.0 * std::cos(th - 0.3) + 0.5 * std::sin(0.5 * th) + std::cos(12.0 * th);
+    high[i] = 0.7 * std::sin(12.5 * th + 1.0) + 0.2 * std::cos(30.0 * th);
+  }
+  EXPECT_LT((low_orders(low + high, 12) - low).cwiseAbs().maxCoeff(), 1e-11);
+  Vec half(n);  // orders 0 and 0.5 of `low`
+  for (int i = 0; i < n; ++i) half[i] = 3.0 + 0.5 * std::sin(2.0 * M_PI * i / n);
+  EXPECT_LT((low_orders(low + high, 0.5) - half).cwiseAbs().maxCoeff(), 1e-11);
+  Options o;
+  o.scene = std::string(EVAS_SOURCE_DIR) + "/scenes/demo.yaml";
+  o.out_dir =
+      (fs::temp_directory_path() / ("evas_budget_t_" + std::to_string(::getpid()))).string();
+  BudgetOptions bo;
+  bo.orders = 12;
+  EXPECT_THROW(budget(o, bo), InputError);
+  fs::remove_all(o.out_dir);
+}
+
 TEST(Budget, ModeCutsRemovedAndCsvFields) {
   std::string changed;
   const std::string text =

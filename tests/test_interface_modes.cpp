@@ -307,6 +307,13 @@ TEST(InterfaceModes, LoadMaskKeepsTheLoadedDirections) {
   // Bad masks are refused.
   io.loads = {InterfaceLoadMask{{false, false, false}, false}};
   EXPECT_THROW(add_interface_modes(fe, b, {s2}, io), InputError);
+  try {
+    add_interface_modes_by_name(fe, b, {"section2"}, io);
+    ADD_FAILURE() << "a set without loads was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("set 'section2' has no loads"), std::string::npos)
+        << e.what();
+  }
   io.loads = {InterfaceLoadMask{}, InterfaceLoadMask{}};
   EXPECT_THROW(add_interface_modes(fe, b, {s2}, io), InputError);
 }

@@ -430,3 +430,51 @@ TEST(QuasiStatic, NewmarkParametersThatAmplifyAlgebraicRowsRefuse) {
     }
   }
 }
+
+// modes: damping_above: {frequency: F, ratio: Z} gives the elastic modes of a
+// body file above F Hz the modal damping 2 Z omega (after the body's
+// damping_ratio) and leaves the others as damping_ratio made them; a
+// generated body and a bad entry are refused naming the item.
+TEST(QuasiStatic, DampingAboveAFrequency) {
+  const std::string path = std::string(EVAS_SOURCE_DIR) + "/validation/engine/engine.yaml";
+  std::string text = read_scene_text(path);
+  const std::string key = "damping_ratio: 0.01\n";
+  ASSERT_NE(text.find(key), std::string::npos);
+  const Scene plain = parse_scene(text, path);
+  text.replace(text.find(key), key.size(),
+               "damping_ratio: 0.01\n    modes: {damping_above: {frequency: 1500, ratio: 0.3}}\n");
+  const Scene damped = parse_scene(text, path);
+  const ModalBody& a = *plain.model->bodies()[0].data;
+  const ModalBody& b = *damped.model->bodies()[0].data;
+  ASSERT_EQ(a.num_modes(), b.num_modes());
+  int above = 0;
+  for (int k = 0; k < a.num_modes(); ++k) {
+    const double w = std::sqrt(std::max(0.0, a.eigenvalues[k]));
+    if (a.kinds[k] == ModeKind::Elastic && w / (2.0 * M_PI) > 1500.0) {
+      EXPECT_NEAR(b.damping[k], 2.0 * 0.3 * w, 1e-12 * w) << "mode " << k;
+      ++above;
+    } else {
+      EXPECT_EQ(b.damping[k], a.damping[k]) << "mode " << k;
+    }
+  }
+  EXPECT_GT(above, 0);
+  EXPECT_LT(above, a.num_modes() - 6);
+  std::string bad = text;
+  bad.replace(bad.find("ratio: 0.3"), 10, "ratio: -1");
+  EXPECT_THROW(parse_scene(bad, path), InputError);
+  bad = text;
+  bad.replace(bad.find("{frequency: 1500, ratio: 0.3}"), 29, "{frequency: 1500}");
+  EXPECT_THROW(parse_scene(bad, path), InputError);
+  const std::string beam = std::string(EVAS_SOURCE_DIR) + "/scenes/hinged_beam.yaml";
+  std::string gen = read_scene_text(beam);
+  const std::string modes = "modes: {elastic: 4}";
+  ASSERT_NE(gen.find(modes), std::string::npos);
+  gen.replace(gen.find(modes), modes.size(),
+              "modes: {elastic: 4, damping_above: {frequency: 10, ratio: 0.1}}");
+  try {
+    parse_scene(gen, beam);
+    ADD_FAILURE() << "damping_above on a generated body was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("body files"), std::string::npos) << e.what();
+  }
+}
