@@ -221,6 +221,8 @@ BudgetResult budget(const Options& opt_in, const BudgetOptions& bo) {
     throw InputError("--window does not apply to a budget: it measures the last cycle");
   Options opt = opt_in;
   detail::Setup s = detail::prepare(opt);
+  if (bo.orders > 0.0 && s.info.crank_channel < 0)
+    throw InputError("--orders needs a crank-angle grid (output: {grid: crank-angle})");
   BudgetResult res;
   res.info = detail::make_info(s);
   res.units = s.units;
@@ -236,8 +238,6 @@ BudgetResult budget(const Options& opt_in, const BudgetOptions& bo) {
     throw ReferenceFailed("the base run (" + res.base_label + "): " + p);
   res.base_wall = base.wall;
   res.base_steps = base.stats.steps;
-  if (bo.orders > 0.0 && s.info.crank_channel < 0)
-    throw InputError("--orders needs a crank-angle grid (output: {grid: crank-angle})");
   const Window w = s.info.crank_channel >= 0 ? Window{Window::Kind::LastCycles, 1.0, 0, 0}
                                              : Window{Window::Kind::All, 1.0, 0, 0};
   const std::vector<int> rows = window_rows(w, base.time, base.crank);
