@@ -5,7 +5,7 @@ DEMO_OUT ?= demo-out
 DEBS = cmake g++ make libsundials-dev libsuitesparse-dev libeigen3-dev libspectra-dev \
        libboost-program-options-dev libgtest-dev libyaml-cpp-dev libhdf5-dev gnuplot-nox \
        gmsh calculix-ccx pybind11-dev python3-dev python3-numpy python3-scipy python3-pytest \
-       python3-matplotlib libopenmpi-dev openmpi-bin chromium
+       python3-matplotlib libopenmpi-dev openmpi-bin chromium libxml2-utils
 
 .PHONY: deps build demo test bench work-precision docs format clean validate sanitize
 

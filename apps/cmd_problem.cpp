@@ -10,10 +10,13 @@
 
 #include "apps/commands.h"
 #include "apps/problem_run.h"
+#include "apps/study_checks.h"
+#include "apps/study_problem.h"
 #include "integrators/integrator.h"
 #include "integrators/settings.h"
 #include "io/text_escape.h"
 #include "problems/library.h"
+#include "study/report.h"
 
 namespace evas::cli {
 
@@ -38,8 +41,9 @@ void write_summary(const std::filesystem::path& dir, const problems::LibraryProb
   const bool ok = run.failure.empty();
   f << "{\n  \"problem\": " << json_string(lp.name)
     << ",\n  \"integrator\": " << json_string(s.name)
-    << ",\n  \"formulation\": " << json_string(s.formulation) << ",\n  \"rtol\": " << num(s.rtol)
-    << ",\n  \"atol\": " << num(s.atol) << ",\n  \"t_end\": " << num(lp.t_end)
+    << ",\n  \"formulation\": " << json_string(formulation_used(lp, s))
+    << ",\n  \"rtol\": " << num(s.rtol) << ",\n  \"atol\": " << num(s.atol)
+    << ",\n  \"t_end\": " << num(lp.t_end)
     << ",\n  \"status\": " << json_string(ok ? "completed" : "failed: " + run.failure);
   if (ok && lp.implicit()) {
     f << ",\n  \"mescd\": " << num(run.score.mescd) << ",\n  \"scd\": " << num(run.score.scd)
@@ -105,7 +109,11 @@ int cmd_problem(const std::vector<std::string>& args) {
       "work-precision",
       "sweep IDA in every formulation and radau in index-3/2/1 over rtol 1e-3..1e-10 and "
       "generalized-alpha over 8 step halvings (first-order problems: ida and radau over "
-      "1e-3..1e-12); writes OUT/work_precision.csv and .png");
+      "1e-3..1e-12); writes OUT/work_precision.csv and .png")(
+      "expect-digits", po::value<double>(),
+      "a check that the run's mescd is at least D: exit 3 when it is not (with --junit: the "
+      "testcase)");
+  add_report_options(opts);
   po::variables_map vm;
   if (parse_args(args, opts, {"name"}, vm)) return 0;
   if (vm.count("list")) {
@@ -144,12 +152,19 @@ int cmd_problem(const std::vector<std::string>& args) {
                        "replace it, or choose another folder with --out DIR");
   }
   std::cout << "evas problem " << lp.name << ": " << lp.description << "\n"
-            << "  integrator " << s.name << ", formulation " << s.formulation << ", rtol " << s.rtol
-            << ", atol " << s.atol << "; reference: " << lp.source << "\n";
+            << "  integrator " << s.name << ", formulation " << formulation_used(lp, s) << ", rtol "
+            << s.rtol << ", atol " << s.atol << "; reference: " << lp.source << "\n";
   const ProblemRun run = run_problem(lp, s);
   if (!run.failure.empty()) {
     std::cerr << "evas problem: FAILED: " << run.failure << "\n";
     if (vm.count("out")) write_summary(vm["out"].as<std::string>(), lp, s, run);
+    if (vm.count("expect-digits")) {
+      study::CheckReport report{"problem " + lp.name, command_line("evas", args), run.wall, {}};
+      report.checks.push_back({"mescd of " + settings_label(s) + " on " + lp.name, "none",
+                               ">= " + study::gnum(vm["expect-digits"].as<double>(), 4), false,
+                               "the run failed: " + run.failure});
+      finish_checks(vm, report);
+    }
     return 2;
   }
   const problems::Score& sc = run.score;
@@ -189,7 +204,15 @@ int cmd_problem(const std::vector<std::string>& args) {
   if (!lp.implicit()) std::cout << "; at the end |g| " << gmax;
   std::cout << "\n";
   if (vm.count("out")) write_summary(vm["out"].as<std::string>(), lp, s, run);
-  return 0;
+  study::CheckReport report{"problem " + lp.name, command_line("evas", args), wall, {}};
+  if (vm.count("expect-digits")) {
+    const double want = vm["expect-digits"].as<double>();
+    study::Check c{"mescd of " + settings_label(s) + " on " + lp.name, study::gnum(sc.mescd, 4),
+                   ">= " + study::gnum(want, 4), sc.mescd >= want, ""};
+    if (!c.passed) c.message = "mescd " + c.measured + " is below " + study::gnum(want, 4);
+    report.checks.push_back(c);
+  }
+  return finish_checks(vm, report);
 }
 
 }  // namespace evas::cli

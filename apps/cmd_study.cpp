@@ -4,15 +4,22 @@
 #include <cmath>
 #include <csignal>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
+#include <functional>
 #include <iostream>
+#include <map>
 #include <sstream>
 
 #include "apps/commands.h"
 #include "apps/mpi_runner.h"
+#include "apps/study_checks.h"
+#include "apps/study_problem.h"
 #include "integrators/settings.h"
+#include "plot/study_figures.h"
 #include "study/budget.h"
 #include "study/budget_files.h"
+#include "study/compare.h"
 #include "study/report.h"
 #include "study/study.h"
 #include "study/sweep.h"
@@ -70,13 +77,17 @@ const char* kOverview =
     "  budget SCENE          the error budget of the scene's answer: integration,\n"
     "                        start-up, modal basis, element model, each measured with\n"
     "                        its cost; writes budget.csv/.md, budget_sources.csv\n"
+    "  compare A B           two study tables (CSV files, or folders of them) cell by\n"
+    "                        cell with --rtol/--atol: a regression check (exit 3 when\n"
+    "                        they differ)\n"
     "\n"
     "Every sub-command runs its cases on --jobs N local worker processes, or on the\n"
     "ranks of `mpirun -n N evas study ...`; the files are the same as a serial run's.\n"
     "\n"
     "`evas study <sub-command> --help` lists the options.\n"
     "Exit codes: 0 the study completed (failed cases are results), 1 bad input,\n"
-    "2 the reference run failed, 3 convergence --expect not met, 128 + N stopped by signal N (130: "
+    "2 the reference run failed, 3 a check (--expect, --expect-error, --expect-stable-to,\n"
+    "--expect-digits) failed, 128 + N stopped by signal N (130: "
     "Ctrl-C).\n";
 
 const char* kGrid =
@@ -104,13 +115,20 @@ void add_common(po::options_description& o) {
       "output times the error is taken over: all | last-cycles=N (crank-angle grid: the "
       "last N x 720 degrees) | T0:T1 [s] (default: last-cycles=1 on a crank-angle grid, "
       "else all)")(
-      "norm", po::value<std::string>()->default_value("max"),
-      "max: error = max over channels c and window times of |y - y_ref| / A_c; rms: the RMS "
-      "over the window per channel, then the max over channels. A_c = max over the window "
-      "of |y_ref - mean(y_ref)|, the reference's amplitude of channel c (channels with "
-      "A_c = 0 are left out)")("reference",
-                               po::value<std::string>()->default_value(study::kDefaultReference),
-                               "case spec of the reference run (one case)")(
+      "norm", po::value<std::string>()->default_value(study::kDefaultNorm),
+      "the error measure (docs/study.md): group = max over channels c and window times of "
+      "|y - y_ref| / A_g (default: a channel that barely moves counts on the scale of its "
+      "unit's largest); channel (or max) = the same over A_c; rms = RMS over the window / "
+      "A_c; floor=F = max |y - y_ref| / max(A_c, F A_g); l2 = relative L2 norm over the "
+      "window per unit group; final = |y - y_ref| / A_g at the last time. A_c = max over the "
+      "window of |y_ref - mean(y_ref)|, A_g = the largest A_c among the selected channels of "
+      "c's unit. errors.csv gives every channel's error and names the one that sets it")(
+      "reference", po::value<std::string>()->default_value(study::kDefaultReference),
+      "case spec of the reference run (one case)")(
+      "reference-expr", po::value<std::vector<std::string>>()->composing(),
+      "CHANNEL=EXPR: an analytic reference, EXPR of t [s] (numbers, t, pi, e, + - * / ^, "
+      "sin cos tan exp log sqrt abs sinh cosh tanh atan), one per channel compared "
+      "(repeatable; they select the channels), e.g. 'c.px=1e-3*sin(2*pi*15.9*t)'")(
       "reference-file", po::value<std::string>(),
       "compare against this results file (evas run) instead of a reference run; channels "
       "are matched by name and times within 1e-9 relative")(
@@ -159,6 +177,13 @@ study::Options common_options(const po::variables_map& vm, const std::string& su
   if (vm.count("window")) o.window = vm["window"].as<std::string>();
   o.norm = vm["norm"].as<std::string>();
   o.reference = vm["reference"].as<std::string>();
+  if (vm.count("reference-expr")) {
+    o.reference_exprs = vm["reference-expr"].as<std::vector<std::string>>();
+    if (!vm["reference"].defaulted() || vm.count("reference-file"))
+      throw InputError("give one reference: --reference, --reference-file or --reference-expr");
+    if (sub == "stability" || sub == "sweep" || sub == "budget")
+      throw InputError("--reference-expr applies to work-precision and convergence");
+  }
   if (vm.count("reference-file")) {
     o.reference_file = vm["reference-file"].as<std::string>();
     if (!vm["reference"].defaulted())
@@ -191,7 +216,7 @@ study::Options common_options(const po::variables_map& vm, const std::string& su
     // a worker stuck inside one step is killed a while after its task's --max-wall
     o.runner = study::process_runner(jobs);
   }
-  study::parse_norm(o.norm);  // bad values are input errors before anything runs
+  study::parse_measure(o.norm);  // bad values are input errors before anything runs
   return o;
 }
 
@@ -241,6 +266,92 @@ int finish(const study::StudyInfo& info, bool quiet) {
   return 0;
 }
 
+// --and (a set of targets) and --atol-ratio (problem targets) of work-precision
+// and convergence.
+void add_target_options(po::options_description& o) {
+  o.add_options()("and", po::value<std::vector<std::string>>()->composing(),
+                  "another SCENE or problem:NAME: the same study on each (a set), into "
+                  "OUT/<name>, with OUT/set.md and one JUnit testsuite per target; repeatable")(
+      "atol-ratio", po::value<double>()->default_value(0.01, "0.01"),
+      "problem:NAME: atol = R x rtol where a case does not set atol (1: the test set's "
+      "rtol = atol)");
+}
+
+// A study's targets: the SCENE argument and every --and (a set, as
+// DiffEqDevTools' WorkPrecisionSet), each with its output folder.
+struct Target {
+  std::string scene, out;
+};
+
+std::string target_slug(const std::string& scene) {
+  if (is_problem(scene)) return scene.substr(8);
+  return std::filesystem::path(scene).stem().string();
+}
+
+std::vector<Target> targets_of(const po::variables_map& vm, const std::string& sub) {
+  if (!vm.count("scene"))
+    throw InputError("missing SCENE file or problem:NAME (evas study " + sub + " SCENE.yaml ...)");
+  std::vector<std::string> scenes = {vm["scene"].as<std::string>()};
+  if (vm.count("and"))
+    for (const auto& a : vm["and"].as<std::vector<std::string>>()) scenes.push_back(a);
+  const std::string out = vm.count("out") ? vm["out"].as<std::string>() : "";
+  if (scenes.size() == 1) return {{scenes[0], out}};
+  const std::filesystem::path base =
+      std::filesystem::path(out.empty() ? std::string("out/study-set") : out);
+  std::vector<Target> t;
+  std::map<std::string, int> seen;
+  for (const auto& sc : scenes) {
+    std::string slug = target_slug(sc);
+    if (++seen[slug] > 1) slug += "-" + std::to_string(seen[slug]);
+    t.push_back({sc, (base / slug).string()});
+  }
+  return t;
+}
+
+// Runs `one` on every target (each prints its own table) and writes the
+// checks of all to --junit/--json; for a set also OUT/set.md, one row per
+// target. The exit code: the first target's that did not complete (2, 128 +
+// N), else 3 when a check failed, else 0.
+int run_targets(const po::variables_map& vm, const std::vector<Target>& targets,
+                const std::function<int(const Target&, study::CheckReport&)>& one) {
+  std::vector<study::CheckReport> reports;
+  std::vector<int> codes;
+  for (const auto& t : targets) {
+    study::CheckReport r;
+    r.suite = t.scene;
+    const int code = one(t, r);
+    codes.push_back(code);
+    reports.push_back(r);
+    if (code >= 128) break;  // interrupted: the rest is not run
+  }
+  if (targets.size() > 1) {
+    const std::filesystem::path base = std::filesystem::path(targets[0].out).parent_path();
+    std::ostringstream md;
+    md << "# Study set\n\n| target | output | result | checks |\n|---|---|---|---|\n";
+    for (std::size_t i = 0; i < targets.size(); ++i) {
+      const bool ran = i < codes.size();
+      int failed = 0;
+      if (ran)
+        for (const auto& c : reports[i].checks) failed += c.passed ? 0 : 1;
+      md << "| " << targets[i].scene << " | " << targets[i].out << " | "
+         << (!ran            ? "not run"
+             : codes[i] == 0 ? "completed"
+                             : "exit " + std::to_string(codes[i]))
+         << " | "
+         << (ran ? std::to_string(reports[i].checks.size() - failed) + " of " +
+                       std::to_string(reports[i].checks.size()) + " passed"
+                 : "")
+         << " |\n";
+    }
+    study::write_file_atomic(base / "set.md", md.str());
+    std::cout << "\n" << md.str();
+  }
+  const int checks = finish_checks(vm, reports);
+  for (int c : codes)
+    if (c != 0) return c;
+  return checks;
+}
+
 int work_precision(const std::vector<std::string>& args) {
   po::options_description opts(
       "usage: evas study work-precision SCENE.yaml [--case SPEC]... [options]\n\n"
@@ -257,22 +368,57 @@ int work_precision(const std::vector<std::string>& args) {
       "\"linear-acceleration step=4e-5,2e-5,1e-5,5e-6\".\n\n" +
       std::string(kGrid) +
       "\nExit codes: 0 completed (even with failed cases), 1 bad input, 2 the reference\n"
-      "failed, 128 + N stopped by signal N (130: Ctrl-C).\n\noptions");
+      "failed, 3 an --expect-error check failed, 128 + N stopped by signal N (130: "
+      "Ctrl-C).\n\noptions");
   add_cases(opts);
+  opts.add_options()("work", po::value<std::string>()->default_value("residuals"),
+                     "the figure's second work axis beside wall time: residuals, steps, "
+                     "factorizations, jacobians or iterations")(
+      "expect-error", po::value<std::vector<std::string>>()->composing(),
+      "CHANNELS<=TOL[@CASE]: a check per case (CASE a glob over the case labels, default "
+      "all) that the largest error of the channel globs is at most TOL; exit 3 when one "
+      "fails (with --junit: one testcase each), repeatable")(
+      "expect-digits", po::value<double>(),
+      "problem:NAME only: a check per case that its mescd is at least D");
+  add_target_options(opts);
+  add_report_options(opts);
   add_common(opts);
   po::variables_map vm;
   if (parse_or_help(args, opts, vm)) return 0;
-  const study::Options o = common_options(vm, "work-precision");
-  const auto specs = case_inputs(vm);
+  if (vm.count("expect-error"))  // malformed expressions before anything runs
+    for (const auto& e : vm["expect-error"].as<std::vector<std::string>>()) parse_error_expect(e);
+  work_axis(vm["work"].as<std::string>());  // a bad axis is an input error before anything runs
+  const auto targets = targets_of(vm, "work-precision");
   SignalGuard guard;
-  try {
-    const auto res = study::work_precision(o, specs);
-    std::cout << read_text(res.info.out_dir + "/study.md");
-    return finish(res.info, vm.count("quiet") > 0);
-  } catch (const study::ReferenceFailed& e) {
-    std::cerr << "evas study work-precision: " << e.what() << "\n";
-    return reference_failed_code();
-  }
+  return run_targets(vm, targets, [&](const Target& t, study::CheckReport& report) {
+    if (is_problem(t.scene)) {
+      problem_work_precision_study(vm, args, t.scene, t.out, report);
+      return 0;
+    }
+    if (vm.count("expect-digits"))
+      throw InputError("--expect-digits applies to problem:NAME (scenes: --expect-error)");
+    study::Options o = common_options(vm, "work-precision");
+    o.scene = t.scene;
+    o.out_dir = t.out;
+    o.work = vm["work"].as<std::string>();
+    try {
+      const auto res = study::work_precision(o, case_inputs(vm));
+      std::cout << read_text(res.info.out_dir + "/study.md");
+      if (const int code = finish(res.info, vm.count("quiet") > 0)) return code;
+      report = study::CheckReport{"work-precision " + res.info.scene_name,
+                                  command_line("evas study", args),
+                                  res.reference.wall,
+                                  {}};
+      if (vm.count("expect-error"))
+        for (const auto& e : vm["expect-error"].as<std::vector<std::string>>())
+          for (auto& c : error_checks(e, res.cases, res.reference.names))
+            report.checks.push_back(std::move(c));
+      return 0;
+    } catch (const study::ReferenceFailed& e) {
+      std::cerr << "evas study work-precision: " << t.scene << ": " << e.what() << "\n";
+      return reference_failed_code();
+    }
+  });
 }
 
 int convergence(const std::vector<std::string>& args) {
@@ -295,37 +441,47 @@ int convergence(const std::vector<std::string>& args) {
       "expect", po::value<double>(), "expected order: exit 3 when the slope is off")(
       "tolerance", po::value<double>()->default_value(0.1),
       "allowed |slope - expected order| with --expect");
+  add_target_options(opts);
+  add_report_options(opts);
   add_common(opts);
   po::variables_map vm;
   if (parse_or_help(args, opts, vm)) return 0;
-  const study::Options o = common_options(vm, "convergence");
   if (!vm.count("case")) throw InputError("missing --case SPEC (one family sweeping step or rtol)");
   if (vm.count("tolerance") && !(vm["tolerance"].as<double>() >= 0))
     throw InputError("--tolerance must be >= 0");
+  const auto targets = targets_of(vm, "convergence");
   SignalGuard guard;
-  try {
-    const auto res = study::convergence(o, {vm["case"].as<std::string>(), ""});
-    std::cout << "observed order (least-squares slope of log error against log " << res.key << ", "
-              << res.points << " points): ";
-    if (std::isnan(res.slope))
-      std::cout << "none (fewer than two completed cases with a positive error)\n";
-    else
-      std::cout << study::gnum(res.slope, 4) << "\n";
-    const int code = finish(res.info, vm.count("quiet") > 0);
-    if (code) return code;
-    if (vm.count("expect")) {
-      const double want = vm["expect"].as<double>(), tol = vm["tolerance"].as<double>();
-      if (std::isnan(res.slope) || std::abs(res.slope - want) > tol) {
-        std::cerr << "evas study convergence: observed order " << study::gnum(res.slope, 4)
-                  << " is not " << want << " +- " << tol << "\n";
-        return 3;
-      }
+  return run_targets(vm, targets, [&](const Target& t, study::CheckReport& report) {
+    if (is_problem(t.scene)) {
+      problem_convergence(vm, args, t.scene, t.out, report);
+      return 0;
     }
-    return 0;
-  } catch (const study::ReferenceFailed& e) {
-    std::cerr << "evas study convergence: " << e.what() << "\n";
-    return reference_failed_code();
-  }
+    study::Options o = common_options(vm, "convergence");
+    o.scene = t.scene;
+    o.out_dir = t.out;
+    try {
+      const auto res = study::convergence(o, {vm["case"].as<std::string>(), ""});
+      std::cout << "observed order (least-squares slope of log error against log " << res.key
+                << ", " << res.points << " points): ";
+      if (std::isnan(res.slope))
+        std::cout << "none (fewer than two completed cases with a positive error)\n";
+      else
+        std::cout << study::gnum(res.slope, 4) << "\n";
+      if (const int code = finish(res.info, vm.count("quiet") > 0)) return code;
+      report = study::CheckReport{"convergence " + res.info.scene_name,
+                                  command_line("evas study", args),
+                                  res.reference.wall,
+                                  {}};
+      if (vm.count("expect"))
+        report.checks.push_back(order_check(res.family + " over " + res.key, res.slope, res.points,
+                                            vm["expect"].as<double>(),
+                                            vm["tolerance"].as<double>()));
+      return 0;
+    } catch (const study::ReferenceFailed& e) {
+      std::cerr << "evas study convergence: " << t.scene << ": " << e.what() << "\n";
+      return reference_failed_code();
+    }
+  });
 }
 
 int stability(const std::vector<std::string>& args) {
@@ -343,7 +499,8 @@ int stability(const std::vector<std::string>& args) {
       "largest stable step against the swept parameter. --window and --norm do not\n"
       "apply (the whole run is checked).\n\n"
       "Exit codes: 0 completed, 1 bad input, 2 the reference failed (without --sweep;\n"
-      "with it the point is marked 'reference failed'), 128 + N stopped by signal N (130: "
+      "with it the point is marked 'reference failed'), 3 --expect-stable-to not met, 128 + N "
+      "stopped by signal N (130: "
       "Ctrl-C).\n\noptions");
   opts.add_options()("case,c", po::value<std::string>(), "the case (one integrator setting)")(
       "step-range", po::value<std::string>(), "HMIN:HMAX, the steps searched [s]")(
@@ -351,7 +508,11 @@ int stability(const std::vector<std::string>& args) {
       "ITEM.KEY=V1,V2,...: repeat the search over a scene parameter")(
       "growth", po::value<double>()->default_value(10.0),
       "largest allowed max|y| / reference max|y| per channel")(
-      "bisections", po::value<int>()->default_value(12), "bisections in log h");
+      "bisections", po::value<int>()->default_value(12), "bisections in log h")(
+      "expect-stable-to", po::value<double>(),
+      "H: a check per sweep point that the largest stable step is at least H; exit 3 when "
+      "one fails");
+  add_report_options(opts);
   add_common(opts);
   po::variables_map vm;
   if (parse_or_help(args, opts, vm)) return 0;
@@ -378,7 +539,12 @@ int stability(const std::vector<std::string>& args) {
   try {
     const auto res = study::stability(o, {vm["case"].as<std::string>(), ""}, so);
     std::cout << read_text(res.info.out_dir + "/stability.md");
-    return finish(res.info, vm.count("quiet") > 0);
+    if (const int code = finish(res.info, vm.count("quiet") > 0)) return code;
+    study::CheckReport report{
+        "stability " + res.info.scene_name, command_line("evas study", args), 0.0, {}};
+    if (vm.count("expect-stable-to"))
+      report.checks = stable_checks(vm["expect-stable-to"].as<double>(), res);
+    return finish_checks(vm, report);
   } catch (const study::ReferenceFailed& e) {
     std::cerr << "evas study stability: " << e.what() << "\n";
     return reference_failed_code();
@@ -525,6 +691,50 @@ int budget(const std::vector<std::string>& args) {
   }
 }
 
+int compare(const std::vector<std::string>& args) {
+  po::options_description opts(
+      "usage: evas study compare A B [--rtol R] [--atol A] [--ignore GLOBS] [options]\n\n"
+      "Compares two study tables (study.csv, convergence.csv, errors.csv, ... of two runs\n"
+      "of a study), or every CSV table two folders both hold, cell by cell: rows matched\n"
+      "by --key (default the first column, a case's label), columns by name; numbers\n"
+      "agree when |a - b| <= atol + rtol max(|a|, |b|), texts when equal. Prints the\n"
+      "differences (and rows or columns only one table has).\n\n"
+      "Exit codes: 0 the tables agree, 1 bad input, 3 they differ.\n\noptions");
+  opts.add_options()("help,h", "show this help")("rtol", po::value<double>()->default_value(1e-9),
+                                                 "relative tolerance")(
+      "atol", po::value<double>()->default_value(0.0), "absolute tolerance")(
+      "ignore", po::value<std::string>()->default_value("wall,wall_seconds"),
+      "comma-separated globs of the columns not compared (default: the wall times); '' "
+      "compares every column")("key", po::value<std::string>(),
+                               "the column that names the rows (default: the first)");
+  add_report_options(opts);
+  po::variables_map vm;
+  if (parse_args(args, opts, {"a", "b"}, vm)) return 0;
+  if (!vm.count("a") || !vm.count("b"))
+    throw InputError("give two tables or folders: evas study compare A B");
+  study::CompareOptions co;
+  co.rtol = vm["rtol"].as<double>();
+  co.atol = vm["atol"].as<double>();
+  co.ignore.clear();
+  for (const auto& g : study::split_list(vm["ignore"].as<std::string>(), ','))
+    if (!g.empty()) co.ignore.push_back(g);
+  if (vm.count("key")) co.key = vm["key"].as<std::string>();
+  const auto res = study::compare_tables(vm["a"].as<std::string>(), vm["b"].as<std::string>(), co);
+  std::cout << study::compare_report(res, co);
+  study::CheckReport report{
+      "compare " + vm["a"].as<std::string>(), command_line("evas study", args), 0.0, {}};
+  study::Check c;
+  c.name = "tables " + vm["a"].as<std::string>() + " and " + vm["b"].as<std::string>() + " agree";
+  c.expected =
+      "no cell beyond rtol " + study::gnum(co.rtol, 3) + ", atol " + study::gnum(co.atol, 3);
+  c.measured = std::to_string(res.diffs.size()) + " differing of " + std::to_string(res.cells) +
+               " cells, " + std::to_string(res.problems.size()) + " rows or columns unmatched";
+  c.passed = res.same();
+  if (!c.passed) c.message = c.measured;
+  report.checks.push_back(c);
+  return finish_checks(vm, report);
+}
+
 }  // namespace
 
 int cmd_study(const std::vector<std::string>& args) {
@@ -538,6 +748,7 @@ int cmd_study(const std::vector<std::string>& args) {
   if (sub[0] == "stability") return stability(sub);
   if (sub[0] == "sweep") return sweep(sub);
   if (sub[0] == "budget") return budget(sub);
+  if (sub[0] == "compare") return compare(sub);
   std::cerr << "evas study: unknown sub-command '" << sub[0] << "'\n\n" << kOverview;
   return 1;
 }

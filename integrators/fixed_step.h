@@ -1,7 +1,9 @@
-// Private base of the Newmark-family integrators (generalized-alpha,
-// linear-acceleration): stepping to outputs and stops, step control, dense
-// output and restarts. A derived class implements one step and its local error
-// estimate.
+// Base of the fixed-step integrators (generalized-alpha, linear-acceleration,
+// radau) and public for plug-ins: stepping to outputs and stops, step
+// control, dense output and restarts. A derived class implements one step
+// (step()) and its local error estimate (local_error()); its steps are not
+// capped at the output interval (outputs between steps are interpolated).
+// The Newmark family on it: newmark.h, newmark_dae.h.
 //
 // advance(tout, land):
 //   steps are never taken across the problem's next stop, and when landing the

@@ -14,6 +14,7 @@
 #pragma once
 
 #include <functional>
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -81,6 +82,10 @@ struct IntegratorSettings {
   double baumgarte_beta = 0.0;     ///< index-1: beta^2 g term [1/s]
   double penalty_stiffness = 1e9;  ///< penalty: k (per unit of g) [N/m, N m/rad]
   double penalty_damping = 0.0;    ///< penalty: c (per unit of g') [N s/m]
+  /// The settings a plug-in declares for itself (IntegratorCapabilities::
+  /// settings) that were set: key -> value. Read them with own_setting(),
+  /// which gives the declared default for a key not set.
+  std::map<std::string, double> own;
 };
 
 /// Observer of the accepted steps of a run: called with the time reached and the
@@ -138,6 +143,18 @@ class Integrator {
 /// from these declarations which settings a run's method leaves unread (evas
 /// run warns of them, evas study refuses a case key no case reads, summary.json
 /// lists them).
+/// A setting an integrator declares for itself (a plug-in's own parameter,
+/// e.g. HHT-alpha's alpha): set and read like the built-in ones (the scene's
+/// `integrator:` block, `--set KEY=VALUE`, case specs of `evas study`,
+/// `--help-settings`), stored in IntegratorSettings::own.
+struct DeclaredSetting {
+  std::string key;                   ///< 1 to 32 of a-z, 0-9, '_'; not a built-in key
+  bool integer = false;              ///< whole numbers only
+  double default_value = 0.0;        ///< within [min, max]
+  double min = -1e300, max = 1e300;  ///< the accepted range (inclusive)
+  std::string doc;                   ///< one line: meaning, unit, range
+};
+
 struct IntegratorCapabilities {
   bool declared = false;    ///< false: nothing declared (a plug-in's reads are its own)
   bool adaptive = false;    ///< steps against rtol/atol (always, or with step_control=adaptive)
@@ -147,6 +164,8 @@ struct IntegratorCapabilities {
   std::vector<std::string> formulations;
   /// The keys of the settings it reads (integrators/settings.h), besides name.
   std::vector<std::string> reads;
+  /// Settings of its own (read as well; their keys need not be in `reads`).
+  std::vector<DeclaredSetting> settings;
   bool reads_setting(const std::string& key) const;
 };
 
@@ -166,6 +185,12 @@ using IntegratorFactory = std::function<std::unique_ptr<Integrator>()>;
 void register_integrator(const std::string& name, IntegratorFactory factory,
                          const std::string& description = "",
                          const IntegratorCapabilities& capabilities = {});
+/// A declared setting's value in `s`: the one set, else the default that
+/// `s.name` (or, when it does not declare `key`, the first integrator that
+/// does) declares. Throws InputError when no registered integrator declares it.
+double own_setting(const IntegratorSettings& s, const std::string& key);
+/// Every declared setting of the registered integrators: (integrator, setting).
+std::vector<std::pair<std::string, DeclaredSetting>> declared_settings();
 /// The one-line description given at registration ("" if none).
 std::string integrator_description(const std::string& name);
 /// The capabilities declared at registration (declared = false when none, or

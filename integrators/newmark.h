@@ -1,5 +1,7 @@
-// Private: the Newmark family on the second-order form qdd + f(t, q, v) = 0,
-// shared by generalized-alpha and linear-acceleration (not a public header).
+// The Newmark family on the second-order form qdd + f(t, q, v) = 0, shared by
+// generalized-alpha and linear-acceleration, and public for plug-ins: a member
+// of the family is a class that gives its four parameters (parameters()), as
+// examples/hht_plugin does for HHT-alpha (docs/extending.md).
 //
 // One step from (q_n, v_n, a_n, f_n) to t_{n+1} = t_n + h, unknown a = a_{n+1}:
 //     q_{n+1} = q_n + h v_n + h^2 ((1/2 - beta) a_n + beta a)

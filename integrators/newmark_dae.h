@@ -1,8 +1,10 @@
-// Private: the Newmark family on constrained systems and mass matrices,
+// The Newmark family on constrained systems and mass matrices (public for
+// plug-ins: derive from NewmarkDaeIntegrator, give parameters(); examples/
+// hht_plugin),
 //     M(q) qdd + f(t, q, v) + G^T lambda = 0,   g(t, q) = 0,
 // in the index-3 form of M. Arnold, O. Bruls, "Convergence of the
 // generalized-alpha scheme for constrained mechanical systems", Multibody
-// Syst. Dyn. 18 (2007) 185-202 (not a public header; docs/theory.md s. 10.5).
+// Syst. Dyn. 18 (2007) 185-202 (docs/theory.md s. 10.5).
 //
 // The equations of motion hold at t_{n+1} itself; the Newmark formulas run on
 // a filtered acceleration a,

@@ -15,8 +15,10 @@
 #include <vector>
 
 // 2: Problem::force_jacobian_combination (the vtable changed); 3: IntegratorSettings
-// keeps step_control and iteration as enums, register_integrator takes capabilities
-#define EVAS_PLUGIN_ABI_VERSION 3
+// keeps step_control and iteration as enums, register_integrator takes capabilities;
+// 4: IntegratorSettings::own and IntegratorCapabilities::settings (settings of a
+// plug-in's own), the Newmark-family bases public (integrators/newmark_dae.h)
+#define EVAS_PLUGIN_ABI_VERSION 4
 /// Declares a plug-in's entry point exported whatever the visibility preset:
 ///     EVAS_PLUGIN_EXPORT int evas_plugin_init(int abi_version) { ... }
 #define EVAS_PLUGIN_EXPORT extern "C" __attribute__((visibility("default")))

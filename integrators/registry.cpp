@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "integrators/common.h"
+#include "integrators/settings.h"
 
 namespace evas {
 
@@ -43,6 +44,28 @@ bool valid_name(const std::string& name) {
   return true;
 }
 
+bool valid_key(const std::string& key) {
+  if (key.empty() || key.size() > 32) return false;
+  for (char c : key)
+    if (!((c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '_')) return false;
+  return true;
+}
+
+void check_declared(const std::string& name, const IntegratorCapabilities& caps) {
+  const std::string who = "register_integrator: '" + name + "': setting '";
+  for (std::size_t i = 0; i < caps.settings.size(); ++i) {
+    const DeclaredSetting& d = caps.settings[i];
+    if (!valid_key(d.key))
+      throw InputError(who + d.key + "' is not a valid key (1 to 32 of a-z, 0-9, '_')");
+    if (is_builtin_setting(d.key))
+      throw InputError(who + d.key + "' is a built-in setting (declare a key of its own)");
+    for (std::size_t j = 0; j < i; ++j)
+      if (caps.settings[j].key == d.key) throw InputError(who + d.key + "' is declared twice");
+    if (!(d.min <= d.default_value && d.default_value <= d.max))
+      throw InputError(who + d.key + "': its default is outside [min, max]");
+  }
+}
+
 }  // namespace
 
 void register_integrator(const std::string& name, IntegratorFactory factory,
@@ -52,6 +75,7 @@ void register_integrator(const std::string& name, IntegratorFactory factory,
     throw InputError("register_integrator: '" + name +
                      "' is not a valid integrator name (1 to 64 of a-z, 0-9, '-', '_', '.')");
   if (!factory) throw InputError("register_integrator: '" + name + "' has no factory");
+  check_declared(name, capabilities);
   std::lock_guard<std::mutex> lock(registry_mutex());
   for (const Entry& e : registry())
     if (e.name == name)
@@ -88,7 +112,29 @@ IntegratorCapabilities integrator_capabilities(const std::string& name) {
 }
 
 bool IntegratorCapabilities::reads_setting(const std::string& key) const {
-  return !declared || key == "name" || std::find(reads.begin(), reads.end(), key) != reads.end();
+  if (!declared || key == "name" || std::find(reads.begin(), reads.end(), key) != reads.end())
+    return true;
+  for (const auto& d : settings)
+    if (d.key == key) return true;
+  return false;
+}
+
+std::vector<std::pair<std::string, DeclaredSetting>> declared_settings() {
+  std::lock_guard<std::mutex> lock(registry_mutex());
+  std::vector<std::pair<std::string, DeclaredSetting>> out;
+  for (const auto& entry : registry())
+    for (const auto& d : entry.capabilities.settings) out.push_back({entry.name, d});
+  return out;
+}
+
+double own_setting(const IntegratorSettings& s, const std::string& key) {
+  if (const auto it = s.own.find(key); it != s.own.end()) return it->second;
+  const DeclaredSetting* found = nullptr;
+  const auto all = declared_settings();
+  for (const auto& [name, d] : all)
+    if (d.key == key && (!found || name == s.name)) found = &d;
+  if (!found) throw InputError("'" + key + "' is not a setting any loaded integrator declares");
+  return found->default_value;
 }
 
 std::unique_ptr<Integrator> make_integrator(const std::string& name) {

@@ -230,12 +230,36 @@ const std::vector<Entry>& table() {
   return t;
 }
 
-const Entry& find(const std::string& key) {
+const Entry* find_builtin(const std::string& key) {
   for (const auto& e : table())
-    if (e.info.key == key) return e;
+    if (e.info.key == key) return &e;
+  return nullptr;
+}
+
+// The declaration of a plug-in's own key: that of `integrator` when it
+// declares it, else the first; false when none does.
+bool find_declared(const std::string& key, const std::string& integrator, DeclaredSetting& out,
+                   std::string* declarer = nullptr) {
+  bool found = false;
+  for (const auto& [name, d] : declared_settings())
+    if (d.key == key && (!found || name == integrator)) {
+      out = d;
+      if (declarer) *declarer = name;
+      found = true;
+    }
+  return found;
+}
+
+[[noreturn]] void unknown_key(const std::string& key) {
   std::vector<std::string> keys;
   for (const auto& e : table()) keys.push_back(e.info.key);
+  for (const auto& [name, d] : declared_settings()) keys.push_back(d.key + " (" + name + ")");
   throw InputError("'" + key + "' is not an integrator setting (known: " + join(keys) + ")");
+}
+
+const Entry& find(const std::string& key) {
+  if (const Entry* e = find_builtin(key)) return *e;
+  unknown_key(key);
 }
 
 }  // namespace
@@ -282,7 +306,16 @@ std::vector<std::string> settings_not_read_by(const std::string& integrator) {
   return keys;
 }
 
+bool is_builtin_setting(const std::string& key) { return find_builtin(key) != nullptr; }
+
 std::string setting_unread_reason(const IntegratorSettings& s, const std::string& key) {
+  if (!find_builtin(key)) {
+    DeclaredSetting d;
+    std::string declarer;
+    if (!find_declared(key, s.name, d, &declarer)) unknown_key(key);
+    if (declarer == s.name || !integrator_capabilities(s.name).declared) return "";
+    return s.name + " does not read it (it is " + declarer + "'s own setting)";
+  }
   const Entry& e = find(key);
   const IntegratorCapabilities caps = integrator_capabilities(s.name);
   if (!caps.declared) return "";
@@ -328,11 +361,25 @@ const char* to_text(Iteration i) {
 
 void set_integrator_setting(IntegratorSettings& s, const std::string& key,
                             const std::string& value) {
-  find(key).set(s, value);
+  if (const Entry* e = find_builtin(key)) {
+    e->set(s, value);
+    return;
+  }
+  DeclaredSetting d;
+  if (!find_declared(key, s.name, d)) unknown_key(key);
+  const double x =
+      d.integer ? static_cast<double>(parse_integer(key, value)) : parse_number(key, value);
+  if (!(x >= d.min && x <= d.max))
+    throw InputError(key + ": " + value + " is outside [" + number_text(d.min) + ", " +
+                     number_text(d.max) + "]");
+  s.own[key] = x;
 }
 
 std::string get_integrator_setting(const IntegratorSettings& s, const std::string& key) {
-  return find(key).get(s);
+  if (const Entry* e = find_builtin(key)) return e->get(s);
+  DeclaredSetting d;
+  if (!find_declared(key, s.name, d)) unknown_key(key);
+  return number_text(own_setting(s, key));
 }
 
 void apply_setting_assignment(IntegratorSettings& s, const std::string& assignment) {
@@ -372,6 +419,9 @@ std::string settings_label(const IntegratorSettings& s) {
     const std::string v = e.get(s);
     if (knob || v != e.get(d)) out += " " + key + "=" + v;
   }
+  // a plug-in's own settings that were set (a value equal to its default too:
+  // it was chosen), in key order
+  for (const auto& [key, value] : s.own) out += " " + key + "=" + number_text(value);
   return out;
 }
 
@@ -382,6 +432,10 @@ std::string settings_reference() {
   for (const auto& e : table())
     os << "| `" << e.info.key << "` | " << e.get(d) << " | " << applies_text(e) << " | "
        << e.info.doc << " |\n";
+  for (const auto& [name, ds] : declared_settings())
+    os << "| `" << ds.key << "` | " << number_text(ds.default_value) << " | " << name
+       << " (its own) | " << ds.doc << " [" << number_text(ds.min) << ", " << number_text(ds.max)
+       << "]" << (ds.integer ? ", whole numbers" : "") << " |\n";
   return os.str();
 }
 

@@ -19,11 +19,18 @@ struct SettingInfo {
   std::string doc;      ///< one line: meaning, unit, range
 };
 
-/// The table, in documentation order.
+/// The table, in documentation order (the built-in settings; those a
+/// plug-in declares for itself are in declared_settings(), integrator.h).
 const std::vector<SettingInfo>& integrator_settings();
 
-/// Sets `key` from its text form, checking kind and range. Throws InputError
-/// "<key>: <what is wrong>" (callers prefix file, line or option).
+/// True when `key` is in the built-in table.
+bool is_builtin_setting(const std::string& key);
+
+/// Sets `key` from its text form, checking kind and range. A key a loaded
+/// integrator declares for itself (DeclaredSetting) is checked against its
+/// declaration (that of s.name when it declares the key, else the first) and
+/// stored in s.own. Throws InputError "<key>: <what is wrong>" (callers prefix
+/// file, line or option), an unknown key listing the known ones.
 void set_integrator_setting(IntegratorSettings& s, const std::string& key,
                             const std::string& value);
 

@@ -300,8 +300,13 @@ void write_summary_json(const std::string& path, const RunSummary& s) {
     const std::string v = get_integrator_setting(is, info.key);
     const bool text = info.kind == "choice";
     o << "    " << json_string(info.key) << ": " << (text ? json_string(v) : v)
-      << (k + 1 < table.size() ? ",\n" : "\n");
+      << (k + 1 < table.size() || !is.own.empty() ? ",\n" : "\n");
   }
+  // a plug-in's own settings (IntegratorSettings::own)
+  std::size_t k_own = 0;
+  for (const auto& [key, value] : is.own)
+    o << "    " << json_string(key) << ": " << json_number(value)
+      << (++k_own < is.own.size() ? ",\n" : "\n");
   o << "  },\n";
   // settings listed above that this method does not read (e.g. IDA's
   // max_steps in a generalized-alpha run), so that no one reads meaning into them

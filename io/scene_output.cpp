@@ -14,6 +14,7 @@ IntegratorSettings SceneReader::read_integrator(const Node& n) const {
   const std::string item = "integrator";
   std::vector<std::string> keys;
   for (const auto& info : integrator_settings()) keys.push_back(info.key);
+  for (const auto& [name, d] : declared_settings()) keys.push_back(d.key);  // plug-ins' own
   check_keys(n, item, keys);
   IntegratorSettings s;
   // the name first, so that every other key is checked against the same table

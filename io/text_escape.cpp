@@ -116,4 +116,35 @@ std::string json_number(double x) {
   return buf;
 }
 
+std::string xml_text(const std::string& s) {
+  const std::string text = valid_utf8(s);
+  std::string out;
+  for (char ch : text) {
+    const unsigned char c = static_cast<unsigned char>(ch);
+    switch (ch) {
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      case '\'':
+        out += "&apos;";
+        break;
+      default:
+        if ((c < 0x20 && ch != '\t' && ch != '\n' && ch != '\r') || c == 0x7F)
+          out += "\xEF\xBF\xBD";  // U+FFFD
+        else
+          out += ch;
+    }
+  }
+  return out;
+}
+
 }  // namespace evas

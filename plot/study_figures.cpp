@@ -29,6 +29,25 @@ bool usable(double e) { return e > 0.0 && std::isfinite(e); }
 
 }  // namespace
 
+const std::vector<WorkAxis>& work_axes() {
+  static const std::vector<WorkAxis> axes = {
+      {"residuals", "residual_evals", "residual evaluations"},
+      {"steps", "steps", "steps"},
+      {"factorizations", "linear_setups", "factorizations (linear setups)"},
+      {"jacobians", "jacobian_evals", "Jacobian evaluations"},
+      {"iterations", "nonlinear_iterations", "nonlinear iterations"}};
+  return axes;
+}
+
+const WorkAxis& work_axis(const std::string& name) {
+  std::string names;
+  for (const auto& a : work_axes()) {
+    if (name == a.name) return a;
+    names += (names.empty() ? "" : ", ") + std::string(a.name);
+  }
+  throw InputError("--work '" + name + "': expected wall or one of " + names);
+}
+
 WorkPrecisionData read_work_precision(const std::string& path) {
   WorkPrecisionData d;
   h5::Quiet quiet;
@@ -44,12 +63,16 @@ WorkPrecisionData read_work_precision(const std::string& path) {
       throw InputError(path +
                        ": the study's file has no /cases/family (written by an evas "
                        "before 2026-11-29): run the study again");
+    if (h5::has_attribute(f, "work")) d.work = h5::read_string_attribute(f, "work");
+    if (h5::exists(f, "/reference"))
+      d.reference = h5::read_string_attribute(h5::open_group(f, "reference"), "description");
     std::vector<hsize_t> dims;
     const auto family = h5::read_strings(f, "/cases/family");
     const auto status = h5::read_strings(f, "/cases/status");
     const auto error = h5::read_doubles(f, "/cases/error", dims);
     const auto wall = h5::read_doubles(f, "/cases/wall", dims);
-    const auto res = h5::read_doubles(f, "/cases/stats/residual_evals", dims);
+    const auto res =
+        h5::read_doubles(f, std::string("/cases/stats/") + work_axis(d.work).field, dims);
     const std::size_t n = family.size();
     if (status.size() != n || error.size() != n || wall.size() != n || res.size() != n)
       throw h5::Failure("the /cases datasets differ in length");
@@ -98,45 +121,51 @@ std::string work_precision_script(const WorkPrecisionData& d, const std::filesys
   std::ostringstream gp;
   gp << "# work-precision figure of " << d.scene_name << " (evas study)\n"
      << gp_terminal(out, 1400, 560 + 18 * key_rows);
+  // each curve joins its points in order of work: by wall time ($F) and by
+  // the work count ($W) for the second panel
   for (std::size_t i = 0; i < order.size(); ++i) {
-    auto pts = fam[order[i]];
-    std::stable_sort(pts.begin(), pts.end(),
-                     [](const WorkPrecisionPoint* a, const WorkPrecisionPoint* b) {
-                       return a->error > b->error;
-                     });
-    gp << "$F" << i << " << EOD\n";
-    for (const auto* p : pts)
-      gp << gp_num(p->wall, 9) << " " << gp_num(p->error, 9) << " " << gp_num(p->residuals, 12)
-         << "\n";
-    gp << "EOD\n";
+    for (const char* block : {"F", "W"}) {
+      auto pts = fam[order[i]];
+      const bool by_wall = block[0] == 'F';
+      std::stable_sort(pts.begin(), pts.end(),
+                       [by_wall](const WorkPrecisionPoint* a, const WorkPrecisionPoint* b) {
+                         return by_wall ? a->wall < b->wall : a->work < b->work;
+                       });
+      gp << "$" << block << i << " << EOD\n";
+      for (const auto* p : pts)
+        gp << gp_num(p->wall, 9) << " " << gp_num(p->error, 9) << " " << gp_num(p->work, 12)
+           << "\n";
+      gp << "EOD\n";
+    }
   }
+  const std::string ref = d.reference.empty() ? "" : "; reference " + d.reference;
   gp << "set multiplot layout 1,2 title "
-     << gp_quote("work-precision: " + d.scene_name + " (" + d.window + ", norm " + d.norm + ")" +
-                 (common.empty() ? "" : "; all curves: " + shared))
+     << gp_quote("work-precision: " + d.scene_name + " (window " + d.window + ", --norm " + d.norm +
+                 ref + ")" + (common.empty() ? "" : "; all curves: " + shared))
      << "\n"
      << "set logscale xy\nset format y '1e%L'\nset grid\nset bmargin " << key_rows + 5 << "\n"
      << "set key at screen 0.02,screen 0.01 left bottom vertical maxrows " << key_rows
      << " Left reverse samplen 2 width -4\n"
-     << "set ylabel 'error (relative to each channel amplitude)'\n";
-  auto curves = [&](const char* using_) {
+     << "set ylabel " << gp_quote("error (--norm " + d.norm + ")") << "\n";
+  auto curves = [&](const char* block, const char* using_) {
     gp << "plot ";
     for (std::size_t i = 0; i < order.size(); ++i)
-      gp << (i ? ", " : "") << "$F" << i << " using " << using_ << " with linespoints pt "
+      gp << (i ? ", " : "") << "$" << block << i << " using " << using_ << " with linespoints pt "
          << (i < 8 ? 7 : 5) << " title " << gp_quote(legend[i]);  // past 8 the colours repeat
     gp << "\n";
   };
   gp << "set xlabel 'wall time [s]'\n";
-  curves("1:2");
-  gp << "set xlabel 'residual evaluations'\nunset key\n";
-  curves("3:2");
+  curves("F", "1:2");
+  gp << "set xlabel " << gp_quote(work_axis(d.work).label) << "\nunset key\n";
+  curves("W", "3:2");
   gp << "unset multiplot\n";
   return gp.str();
 }
 
 std::string convergence_script(const std::string& scene_name, const std::string& family,
-                               const std::string& key, const std::vector<double>& x,
-                               const std::vector<double>& error, double slope,
-                               const std::filesystem::path& out) {
+                               const std::string& measure, const std::string& key,
+                               const std::vector<double>& x, const std::vector<double>& error,
+                               double slope, const std::filesystem::path& out) {
   std::ostringstream data;
   double sx = 0, sy = 0;
   int n = 0;
@@ -154,8 +183,9 @@ std::string convergence_script(const std::string& scene_name, const std::string&
      << data.str() << "EOD\n"
      << "set logscale xy\nset format y '1e%L'\nset grid\nset key top left\n"
      << "set xlabel " << gp_quote(key) << "\n"
-     << "set ylabel 'error (relative to each channel amplitude)'\n"
-     << "set title " << gp_quote("convergence: " + family + " on " + scene_name) << "\n";
+     << "set ylabel 'error'\n"
+     << "set title " << gp_quote("convergence: " + family + " on " + scene_name + "; " + measure)
+     << "\n";
   if (!std::isnan(slope)) {
     const double b = sy / n - slope * sx / n;  // the fit passes through the centroid
     gp << "f(x) = exp(" << gp_num(b, 12) << ") * x**(" << gp_num(slope, 12) << ")\n"

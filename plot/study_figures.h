@@ -12,15 +12,27 @@
 namespace evas {
 
 /// A case of a work-precision study: its family (its settings without the
-/// precision knobs: one curve joins the cases that differ only in those),
-/// wall time [s], error and residual evaluations.
+/// precision knobs its spec sweeps: one curve joins the cases that differ only
+/// in those), wall time [s], error and its count of the work axis.
 struct WorkPrecisionPoint {
   std::string family;
-  double wall = 0.0, error = 0.0, residuals = 0.0;
+  double wall = 0.0, error = 0.0, work = 0.0;
 };
+
+/// The work axes beside wall time: `--work` name -> statistic (IntegratorStats field).
+struct WorkAxis {
+  const char* name;   ///< --work value
+  const char* field;  ///< statistic (a /cases/stats dataset)
+  const char* label;  ///< axis label
+};
+const std::vector<WorkAxis>& work_axes();
+/// The axis of a --work value; throws InputError listing the names.
+const WorkAxis& work_axis(const std::string& name);
 
 struct WorkPrecisionData {
   std::string scene_name, window, norm;
+  std::string reference;                   ///< the reference's description
+  std::string work = "residuals";          ///< the second panel's axis (work_axes())
   std::vector<WorkPrecisionPoint> points;  ///< completed cases only
 };
 
@@ -34,10 +46,11 @@ std::string work_precision_script(const WorkPrecisionData& d, const std::filesys
 
 /// The convergence figure: error against `key` (x > 0), with the least-squares
 /// line of slope `slope` through the points' centroid in log-log (none when
-/// slope is NaN); "" when no point has a positive finite error.
+/// slope is NaN); "" when no point has a positive finite error. `measure`
+/// (the --norm and the reference) is named in the title.
 std::string convergence_script(const std::string& scene_name, const std::string& family,
-                               const std::string& key, const std::vector<double>& x,
-                               const std::vector<double>& error, double slope,
-                               const std::filesystem::path& out);
+                               const std::string& measure, const std::string& key,
+                               const std::vector<double>& x, const std::vector<double>& error,
+                               double slope, const std::filesystem::path& out);
 
 }  // namespace evas

@@ -9,18 +9,22 @@
 #include <pybind11/stl.h>
 
 #include <cmath>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "dae/consistent.h"
+#include "dae/formulation.h"
 #include "integrators/integrator.h"
 #include "integrators/plugin.h"
 #include "integrators/settings.h"
 #include "io/outputs.h"
 #include "io/results.h"
 #include "io/scene.h"
+#include "python/array_util.h"
+#include "python/problem_binding.h"
 #include "run/run.h"
 #include "solver/system.h"
 #include "study/scene_edit.h"
@@ -31,34 +35,10 @@ using evas::Vec;
 
 namespace {
 
-using Array = py::array_t<double, py::array::c_style | py::array::forcecast>;
-
-Vec to_vec(const Array& a, long n, const char* what) {
-  if (a.ndim() != 1 || a.shape(0) != n)
-    throw evas::InputError(std::string(what) + ": expected a vector of length " +
-                           std::to_string(n));
-  return Eigen::Map<const Vec>(a.data(), n);
-}
-
-Array to_array(const Vec& v) {
-  Array a(v.size());
-  std::copy(v.data(), v.data() + v.size(), a.mutable_data());
-  return a;
-}
-
-// (data, indices, indptr, (rows, cols)) of a compressed-column matrix
-py::tuple csc_parts(const SpMat& A) {
-  SpMat c = A;
-  c.makeCompressed();
-  Array data(c.nonZeros());
-  py::array_t<long> indices(c.nonZeros()), indptr(c.cols() + 1);
-  for (long k = 0; k < c.nonZeros(); ++k) {
-    data.mutable_data()[k] = c.valuePtr()[k];
-    indices.mutable_data()[k] = c.innerIndexPtr()[k];
-  }
-  for (long k = 0; k <= c.cols(); ++k) indptr.mutable_data()[k] = c.outerIndexPtr()[k];
-  return py::make_tuple(data, indices, indptr, py::make_tuple(c.rows(), c.cols()));
-}
+using evas::py_util::Array;
+using evas::py_util::csc_parts;
+using evas::py_util::to_array;
+using evas::py_util::to_vec;
 
 class Model {
  public:
@@ -192,6 +172,46 @@ class Model {
     return py::make_tuple(to_array(cs.q), to_array(cs.v), to_array(cs.lambda));
   }
 
+  // The full residual of a jointed scene's DAE in a formulation (index-3,
+  // index-2, ggl, index-1; dae/formulation.h), y = [q; v; lambda (; mu); z]:
+  // what IDA solves, where residual() above is the unconstrained part only.
+  evas::dae::DaeForm& form(const std::string& formulation) {
+    const evas::dae::Formulation f =
+        evas::dae::parse_formulation(formulation, evas::dae::Formulation::ggl);
+    if (f == evas::dae::Formulation::penalty)
+      throw evas::InputError(
+          "formulation penalty is an ODE (rhs, residual): take index-3, "
+          "index-2, ggl or index-1");
+    const std::string key = evas::dae::formulation_name(f);
+    auto& slot = forms_[key];
+    if (!slot) slot = std::make_unique<evas::dae::DaeForm>(*sys_, f, 0.0, 0.0);
+    return *slot;
+  }
+  int dae_size(const std::string& formulation) { return form(formulation).size(); }
+  Array dae_residual(double t, const Array& y, const Array& yd, const std::string& formulation) {
+    evas::dae::DaeForm& d = form(formulation);
+    const Vec yy = to_vec(y, d.size(), "y"), dd = to_vec(yd, d.size(), "yd");
+    Vec F(d.size());
+    d.residual(t, yy.data(), dd.data(), F.data());
+    return to_array(F);
+  }
+  py::tuple dae_iteration_matrix(double t, const Array& y, const Array& yd, double cj,
+                                 const std::string& formulation) {
+    evas::dae::DaeForm& d = form(formulation);
+    const Vec yy = to_vec(y, d.size(), "y"), dd = to_vec(yd, d.size(), "yd");
+    SpMat J = d.residual_pattern();
+    d.residual_jacobian(t, yy.data(), dd.data(), cj, J);
+    return csc_parts(J);
+  }
+  py::tuple dae_consistent_start(double t, const Array& q, const Array& v,
+                                 const std::string& formulation) {
+    evas::dae::DaeForm& d = form(formulation);
+    const Vec qq = to_vec(q, n_, "q"), vv = to_vec(v, n_, "v");
+    Vec y(d.size()), yd(d.size());
+    const double r = d.consistent_start(t, qq, vv, y.data(), yd.data());
+    return py::make_tuple(to_array(y), to_array(yd), r);
+  }
+
   Array outputs(double t, const Array& q, const Array& v) {
     const Vec qq = to_vec(q, n_, "q"), vv = to_vec(v, n_, "v");
     Vec row(out_->size());
@@ -263,6 +283,7 @@ class Model {
   int n_;
   SpMat K_, C_;
   Vec f_;
+  std::map<std::string, std::unique_ptr<evas::dae::DaeForm>> forms_;
 };
 
 py::dict read_results(const std::string& path) {
@@ -282,12 +303,36 @@ py::dict read_results(const std::string& path) {
   return d;
 }
 
+// A results file from Python (e.g. an analytic or SciPy reference for
+// `evas study --reference-file`): time (rows), values (rows x channels).
+void write_results(const std::string& path, const Array& time, const Array& values,
+                   const std::vector<std::string>& names, const std::vector<std::string>& units,
+                   const std::string& integrator) {
+  const long nr = time.ndim() == 1 ? time.shape(0) : -1;
+  if (nr < 0) throw evas::InputError("write_results: time must be a vector");
+  if (values.ndim() != 2 || values.shape(0) != nr ||
+      values.shape(1) != static_cast<long>(names.size()))
+    throw evas::InputError("write_results: values must be rows x channels (" + std::to_string(nr) +
+                           " x " + std::to_string(names.size()) + ")");
+  if (!units.empty() && units.size() != names.size())
+    throw evas::InputError("write_results: one unit per channel (or none)");
+  std::vector<evas::Channel> channels;
+  for (std::size_t c = 0; c < names.size(); ++c)
+    channels.push_back({names[c], units.empty() ? "" : units[c]});
+  evas::ResultsWriter::Options o;
+  o.integrator = integrator;
+  evas::ResultsWriter w(path, channels, o);
+  for (long r = 0; r < nr; ++r) w.append(time.at(r), values.data(r, 0));
+  w.finish(evas::IntegratorStats{}, "completed");
+}
+
 }  // namespace
 
 PYBIND11_MODULE(_evas, m) {
   m.doc() = "evas: engine vibration analysis models and integrators (compiled part)";
   py::register_exception<evas::InputError>(m, "InputError", PyExc_ValueError);
   py::register_exception<evas::RunError>(m, "RunError", PyExc_RuntimeError);
+  bind_problems(m);
   py::class_<Model>(m, "Model")
       .def(py::init<const std::string&, const std::optional<std::string>&,
                     const std::vector<std::string>&>(),
@@ -314,8 +359,15 @@ PYBIND11_MODULE(_evas, m) {
       .def("_constraint_jacobian", &Model::constraint_jacobian)
       .def("consistent_state", &Model::consistent_state, py::arg("t"), py::arg("q"), py::arg("v"))
       .def("outputs", &Model::outputs, py::arg("t"), py::arg("q"), py::arg("v"))
+      .def("dae_size", &Model::dae_size, py::arg("formulation") = "default")
+      .def("dae_residual", &Model::dae_residual, py::arg("t"), py::arg("y"), py::arg("yd"),
+           py::arg("formulation") = "default")
+      .def("_dae_iteration_matrix", &Model::dae_iteration_matrix)
+      .def("dae_consistent_start", &Model::dae_consistent_start, py::arg("t"), py::arg("q"),
+           py::arg("v"), py::arg("formulation") = "default")
       .def("_run", &Model::run);
   m.def("_read_results", &read_results);
+  m.def("_write_results", &write_results);
   m.def("integrators", &evas::integrator_names, "names of the integrators (built in and loaded)");
   m.def("load_plugin", &evas::load_plugin, py::arg("spec"),
         "loads an integrator plug-in; returns the names it registered");

@@ -29,11 +29,9 @@ std::string coarse_step_warning(const Model& model, const IntegratorSettings& s)
      << " steps per period of the highest mode (" << std::lround(f) << " Hz, body '" << body
      << "' mode " << mode << "); below " << kMinStepsPerPeriod
      << " the fixed step cannot follow it, and elements may meet states outside their range. "
-     << (s.name == "radau"
-             ? "Set `step` or step_control=adaptive (on the paper's engine rtol 1e-3 gives an "
-               "error of 1e-3 in the main-bearing loads)"
-             : "Set `step` (on the paper's engine about 50 per period, 8e-6 s, for an error of "
-               "1e-3 in the main-bearing loads) or step_control=adaptive");
+     << "Set `step` to " << 1.0 / (50.0 * f) << " s or less (50 steps per period of that mode)"
+     << (integrator_capabilities(s.name).adaptive ? " or step_control=adaptive (rtol, atol)" : "")
+     << ", or leave the mode out of the body's basis.";
   return os.str();
 }
 
@@ -48,7 +46,7 @@ std::string step_count_warning(const IntegratorSettings& s, double t_start, doub
   os << s.name << ": step " << s.step << " s needs about " << steps
      << " steps to reach t = " << t_end << " s (more than " << kMaxPlausibleSteps
      << "; at 10 us per step that is " << days_at_10us << " days): steps are in seconds, is "
-     << s.step << " a slip? (the paper's engine runs at 1e-5 s; 1 us is 1e-6)";
+     << s.step << " a slip? (10 us is 1e-5 s, 1 us is 1e-6)";
   return os.str();
 }
 

@@ -43,12 +43,18 @@ Vec low_orders(const Vec& x, double orders) {
 
 namespace {
 
+/// The budget is per channel, each on its own amplitude: the RMS measures
+/// (rms, l2) give rms, every other --norm the max over the window.
+Norm norm_of(const detail::Setup& s) {
+  return s.measure.norm == Norm::Rms || s.measure.norm == Norm::L2 ? Norm::Rms : Norm::Max;
+}
+
 /// Error of every channel of y against ref over `rows` (NaN for a channel
 /// that is constant in ref). With orders > 0 the rows are one cycle (a last
 /// row one period after the first is left out) and both are first reduced to
 /// their engine orders up to `orders`; the amplitude stays ref's own.
-std::vector<double> channel_errors(const Mat& y, const Mat& ref, const std::vector<int>& rows,
-                                   Norm norm, double orders) {
+std::vector<double> budget_errors(const Mat& y, const Mat& ref, const std::vector<int>& rows,
+                                  Norm norm, double orders) {
   std::vector<double> e(static_cast<std::size_t>(ref.cols()), kNaN);
   if (orders <= 0.0) {
     for (Eigen::Index c = 0; c < ref.cols(); ++c)
@@ -115,7 +121,7 @@ void against(BudgetSource& src, const RunData& v, const RunData& base, const std
   src.note = how;
   src.wall = v.wall;
   src.steps = v.stats.steps;
-  set_errors(src, channel_errors(base.y, v.y, rows, norm, orders));
+  set_errors(src, budget_errors(base.y, v.y, rows, norm, orders));
 }
 
 /// Key of a crank angle within the 720-deg cycle (1e-6 deg resolution).
@@ -159,7 +165,7 @@ void measure_startup(const Options& opt, const detail::Setup& s, const RunData& 
                  " rows matched by crank angle";
       src.wall = p.wall;
       src.steps = p.stats.steps;
-      set_errors(src, channel_errors(yb, yp, all, s.norm, orders));
+      set_errors(src, budget_errors(yb, yp, all, norm_of(s), orders));
       return;
     }
   }
@@ -188,7 +194,7 @@ void measure_startup(const Options& opt, const detail::Setup& s, const RunData& 
   src.note = "the periodic search failed (" + why + "): the last cycle against the one before";
   src.wall = 0.0;
   src.steps = 0;
-  set_errors(src, channel_errors(last, prev, all, s.norm, orders));
+  set_errors(src, budget_errors(last, prev, all, norm_of(s), orders));
 }
 
 }  // namespace
@@ -225,6 +231,7 @@ BudgetResult budget(const Options& opt_in, const BudgetOptions& bo) {
     throw InputError("--orders needs a crank-angle grid (output: {grid: crank-angle})");
   BudgetResult res;
   res.info = detail::make_info(s);
+  res.info.norm = norm_text(norm_of(s));
   res.units = s.units;
   const IntegratorSettings base_set = s.info.integrator;
   res.base_label = settings_label(base_set);
@@ -242,6 +249,7 @@ BudgetResult budget(const Options& opt_in, const BudgetOptions& bo) {
                                              : Window{Window::Kind::All, 1.0, 0, 0};
   const std::vector<int> rows = window_rows(w, base.time, base.crank);
   res.info.window = w.text();
+  res.info.error_definition = error_definition(ErrorMeasure{norm_of(s), 0.0}, w);
 
   // integration
   BudgetSource integ;
@@ -257,7 +265,7 @@ BudgetResult budget(const Options& opt_in, const BudgetOptions& bo) {
   }
   integ.variation = settings_label(tight);
   detail::say(opt, "budget: integration (" + integ.variation + ")");
-  against(integ, run_case(s.src, tight, s.channels, nullptr, opt.stop), base, rows, s.norm,
+  against(integ, run_case(s.src, tight, s.channels, nullptr, opt.stop), base, rows, norm_of(s),
           bo.orders, "the tighter run",
           "the base against the integrator tightened " + gnum(bo.tighten, 3) + "x");
   res.sources.push_back(integ);
@@ -293,7 +301,7 @@ BudgetResult budget(const Options& opt_in, const BudgetOptions& bo) {
     not_measured(basis, nc, basis.note.empty() ? "interrupted" : basis.note);
   } else {
     detail::say(opt, "budget: basis (" + basis.variation + ")");
-    against(basis, run_case(rich, base_set, s.channels, nullptr, opt.stop), base, rows, s.norm,
+    against(basis, run_case(rich, base_set, s.channels, nullptr, opt.stop), base, rows, norm_of(s),
             bo.orders, "the richer basis", "the base against the same run on the richer basis");
   }
   res.sources.push_back(basis);

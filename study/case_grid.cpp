@@ -32,6 +32,8 @@ bool parse_double(const std::string& s, double& x) {
 std::string kind_of(const std::string& key) {
   for (const auto& info : integrator_settings())
     if (info.key == key) return info.kind;
+  for (const auto& [name, d] : declared_settings())
+    if (d.key == key) return d.integer ? "integer" : "number";
   return "";
 }
 

@@ -19,29 +19,36 @@ using namespace detail;
 
 namespace {
 
-void write_convergence(const Options& opt, ConvergenceResult& res, bool final) {
+void write_convergence(const Options& opt, ConvergenceResult& res, const std::vector<int>& rows,
+                       bool final) {
   StudyInfo& info = res.info;
   const fs::path dir = info.out_dir;
   info.files.clear();
   // CSV: the swept value and orders in front of the full case table
   std::vector<Column> cols = case_columns(res.cases);
-  Column x{res.key, res.key, Column::Kind::Real, {}, res.x};
+  // the swept value as a number (the settings column `step` or `rtol` holds it as text)
+  Column x{"swept_" + res.key, "swept_" + res.key, Column::Kind::Real, {}, res.x};
   Column po{"order", "order", Column::Kind::Real, {}, res.pair_order};
   cols.insert(cols.begin() + 1, po);
   cols.insert(cols.begin() + 1, x);
   write_file_atomic(dir / "convergence.csv", columns_csv(cols, res.cases.size()));
   info.files.push_back((dir / "convergence.csv").string());
+  write_file_atomic(dir / "errors.csv", errors_csv(res.cases, res.reference, rows, info));
+  info.files.push_back((dir / "errors.csv").string());
 
   std::ostringstream md;
   md << md_header("Convergence study", info, opt, res.reference);
-  md << "| case | " << res.key << " | status | error | order | wall [s] | steps | residuals |\n"
-     << "|---|---:|---|---:|---:|---:|---:|---:|\n";
+  md << "| case | " << res.key
+     << " | status | error | set by | order | wall [s] | steps | "
+        "residuals |\n"
+     << "|---|---:|---|---:|---|---:|---:|---:|---:|\n";
   for (std::size_t i = 0; i < res.cases.size(); ++i) {
     const auto& r = res.cases[i];
     const bool ran = r.status != CaseStatus::not_run;
     md << "| " << md_cell(r.c.label) << " | " << gnum(res.x[i], 6) << " | " << status_cell(r)
-       << " | " << sci(r.error, 3) << " | " << gnum(res.pair_order[i], 3) << " | "
-       << gnum(r.wall, 4) << " | " << (ran ? std::to_string(r.stats.steps) : "") << " | "
+       << " | " << sci(r.error, 3) << " | " << md_cell(r.error_channel) << " | "
+       << gnum(res.pair_order[i], 3) << " | " << gnum(r.wall, 4) << " | "
+       << (ran ? std::to_string(r.stats.steps) : "") << " | "
        << (ran ? std::to_string(r.stats.residual_evals) : "") << " |\n";
   }
   md << "\norder: log(e_i / e_(i-1)) / log(" << res.key << "_i / " << res.key
@@ -59,7 +66,9 @@ void write_convergence(const Options& opt, ConvergenceResult& res, bool final) {
     errors.push_back(r.status == CaseStatus::completed ? r.error : kNaN);
   const fs::path png = dir / "convergence.png";
   const std::string gp =
-      convergence_script(info.scene_name, res.family, res.key, res.x, errors, res.slope, png);
+      convergence_script(info.scene_name, res.family,
+                         "--norm " + info.norm + ", reference " + res.reference.description,
+                         res.key, res.x, errors, res.slope, png);
   if (!gp.empty()) plot(opt, dir / "convergence.gp", gp, info, png);
 }
 
@@ -87,6 +96,7 @@ double log_log_slope(const std::vector<double>& x, const std::vector<double>& e,
 ConvergenceResult convergence(const Options& opt, const CaseInput& spec) {
   Setup s = prepare(opt);
   std::vector<Case> cases = expand_case(spec.spec, s.info.integrator, spec.where);
+  tie_iteration_tolerance(opt, cases, s.info.integrator);
   const std::string where = spec.where.empty() ? "--case '" + spec.spec + "'" : spec.where;
   if (cases.empty() || cases.front().swept.size() != 1)
     throw InputError(where + ": a convergence study sweeps exactly one key, step or rtol (" +
@@ -133,13 +143,13 @@ ConvergenceResult convergence(const Options& opt, const CaseInput& spec) {
     }
     res.slope = log_log_slope(res.x, e, &res.points);
   };
-  write_convergence(opt, res, false);
+  write_convergence(opt, res, rows, false);
   run_cases(opt, s, cases, res.reference, rows, res.cases, res.info, [&] {
     update();
-    write_convergence(opt, res, false);
+    write_convergence(opt, res, rows, false);
   });
   update();
-  write_convergence(opt, res, true);
+  write_convergence(opt, res, rows, true);
   return res;
 }
 

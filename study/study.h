@@ -46,14 +46,18 @@ struct Options {
   std::optional<double> t_end;      ///< end time override [s]
   std::string channels;             ///< comma-separated globs; "" = all but crank_angle
   std::string window;               ///< "" = last-cycles=1 on a crank-angle grid, else all
-  std::string norm = "max";         ///< "max" or "rms"
+  std::string norm = kDefaultNorm;  ///< --norm (measure.h: group, channel, rms, floor=F, l2, final)
   std::string reference = kDefaultReference;  ///< case spec of the reference run
   std::string reference_file;                 ///< or a results file (evas run) to compare against
-  int repeats = 1;                            ///< wall time = minimum over this many runs
-  std::string out_dir;                        ///< "" = out/study-<scene name>
-  bool plot = true;                           ///< run gnuplot when present
-  std::ostream* log = nullptr;                ///< progress lines (nullptr: silent)
-  std::function<bool()> stop;                 ///< true once an interrupt was requested
+  /// or analytic: "CHANNEL=EXPR" of t (study/expression.h), one per channel
+  /// compared (they select the channels)
+  std::vector<std::string> reference_exprs;
+  int repeats = 1;                 ///< wall time = minimum over this many runs
+  std::string work = "residuals";  ///< work-precision's second work axis (plot/study_figures.h)
+  std::string out_dir;             ///< "" = out/study-<scene name>
+  bool plot = true;                ///< run gnuplot when present
+  std::ostream* log = nullptr;     ///< progress lines (nullptr: silent)
+  std::function<bool()> stop;      ///< true once an interrupt was requested
   /// Runs the cases (nullptr: one after another in this process); --jobs, MPI.
   std::shared_ptr<TaskRunner> runner;
   double max_wall = 0.0;  ///< wall-clock limit of one run [s] (--max-wall); 0 = none
@@ -84,6 +88,9 @@ struct CaseResult {
   CaseStatus status = CaseStatus::not_run;
   std::string message;
   double error = std::numeric_limits<double>::quiet_NaN();
+  /// Every selected channel's error (NaN: no scale) and the one that sets `error`.
+  std::vector<double> channel_error;
+  std::string error_channel;
   double wall = std::numeric_limits<double>::quiet_NaN();
   long rows = 0;  ///< output rows reached
   IntegratorStats stats;

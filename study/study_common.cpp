@@ -10,6 +10,7 @@
 #include "integrators/settings.h"
 #include "io/results.h"
 #include "plot/gnuplot_process.h"
+#include "study/expression.h"
 #include "study/report.h"
 
 namespace evas::study::detail {
@@ -21,7 +22,8 @@ bool same_time(double a, double b, double scale) {
 }
 
 CaseResult evaluate(const Case& c, const RunData& d, const Reference& ref,
-                    const std::vector<int>& rows, Norm norm, double scale) {
+                    const std::vector<int>& rows, const ErrorMeasure& m,
+                    const std::vector<std::string>& units, double scale) {
   CaseResult r;
   r.c = c;
   r.status = d.status;
@@ -38,7 +40,10 @@ CaseResult evaluate(const Case& c, const RunData& d, const Reference& ref,
     r.message = "the output times differ from the reference's";
     return r;
   }
-  r.error = relative_error(d.y, ref.y, rows, norm);
+  ChannelErrors e = channel_errors(d.y, ref.y, rows, m, units);
+  r.error = e.total;
+  r.channel_error = std::move(e.error);
+  if (e.worst >= 0) r.error_channel = ref.names[static_cast<std::size_t>(e.worst)];
   return r;
 }
 
@@ -67,6 +72,26 @@ std::string strip_keys(const std::string& label, const std::set<std::string>& ke
   return out;
 }
 
+void tie_iteration_tolerance(const Options& opt, std::vector<Case>& cases,
+                             const IntegratorSettings& base) {
+  if (base.balance_tol != IntegratorSettings{}.balance_tol) return;  // the scene chose it
+  int tied = 0;
+  for (Case& c : cases) {
+    if (c.spec.find("balance_tol=") != std::string::npos) continue;
+    if (!integrator_capabilities(c.settings.name).reads_setting("balance_tol")) continue;
+    if (!integrator_capabilities(c.settings.name).declared) continue;  // a plug-in: its own
+    c.settings.balance_tol = kStudyBalanceTol;
+    c.label = settings_label(c.settings);
+    ++tied;
+  }
+  if (tied > 0)
+    say(opt,
+        "evas study: " + std::to_string(tied) +
+            " case(s) of linear-acceleration run with balance_tol=" + gnum(kStudyBalanceTol, 3) +
+            " (its default 1e-3 is an iteration error that does not shrink with the step; "
+            "give balance_tol in the case spec to study the iteration itself)");
+}
+
 bool stopped(const Options& o) { return o.stop && o.stop(); }
 
 void say(const Options& o, const std::string& line) {
@@ -82,12 +107,29 @@ Setup prepare(const Options& opt) {
   s.started = start_from(s.src, opt.start, opt.stop, opt.log);
   s.info = probe_scene(s.src);
   for (const std::string& w : s.info.warnings) say(opt, "evas study: warning: " + w);
-  s.channels = select_channels(s.info.channels, opt.channels);
+  if (!opt.reference_exprs.empty()) {
+    // the expressions name the channels compared
+    if (!opt.channels.empty())
+      throw InputError("--channels and --reference-expr: the expressions name the channels");
+    for (const auto& e : opt.reference_exprs) {
+      const auto eq = e.find('=');
+      const std::string name = eq == std::string::npos ? "" : e.substr(0, eq);
+      if (name.empty())
+        throw InputError("--reference-expr '" + e +
+                         "': expected CHANNEL=EXPR, e.g. "
+                         "'c.px=1e-3*sin(2*pi*15*t)'");
+      s.channels.push_back(select_channels(s.info.channels, name).front());
+      if (s.info.channels[static_cast<std::size_t>(s.channels.back())].name != name)
+        throw InputError("--reference-expr '" + e + "': name one channel exactly, not a glob");
+    }
+  } else {
+    s.channels = select_channels(s.info.channels, opt.channels);
+  }
   for (int c : s.channels) {
     s.names.push_back(s.info.channels[static_cast<std::size_t>(c)].name);
     s.units.push_back(s.info.channels[static_cast<std::size_t>(c)].unit);
   }
-  s.norm = parse_norm(opt.norm);
+  s.measure = parse_measure(opt.norm);
   if (opt.window.empty()) {
     s.window_default = true;
     if (s.info.crank_channel >= 0) s.window = parse_window("last-cycles=1");
@@ -126,8 +168,8 @@ StudyInfo make_info(const Setup& s) {
   i.grid = s.info.grid;
   i.channels = s.names;
   i.window = s.window.text();
-  i.norm = norm_text(s.norm);
-  i.error_definition = error_definition(s.norm, s.window);
+  i.norm = measure_text(s.measure);
+  i.error_definition = error_definition(s.measure, s.window);
   i.start = s.started.description;
   i.out_dir = s.out.string();
   return i;
@@ -228,7 +270,34 @@ Reference read_reference(const Options& opt, const SceneInfo& info,
   return r;
 }
 
+// The analytic reference: every expression at the scene's output times.
+Reference analytic_reference(const Options& opt, const Setup& s) {
+  Reference r;
+  r.names = s.names;
+  r.units = s.units;
+  r.time = s.info.times;
+  r.crank = s.info.crank;
+  r.y.resize(static_cast<long>(r.time.size()), static_cast<long>(s.names.size()));
+  std::string desc;
+  for (std::size_t c = 0; c < opt.reference_exprs.size(); ++c) {
+    const std::string& e = opt.reference_exprs[c];
+    const Expression f(e.substr(e.find('=') + 1), "--reference-expr " + s.names[c]);
+    for (std::size_t k = 0; k < r.time.size(); ++k) {
+      const double v = f(r.time[k]);
+      if (!std::isfinite(v))
+        throw InputError("--reference-expr '" + e + "': not finite at t = " + gnum(r.time[k], 9) +
+                         " s");
+      r.y(static_cast<long>(k), static_cast<long>(c)) = v;
+    }
+    desc += (desc.empty() ? "" : "; ") + s.names[c] + " = " + f.text();
+  }
+  r.description = "analytic: " + desc;
+  say(opt, "evas study: reference " + r.description);
+  return r;
+}
+
 Reference make_reference(const Options& opt, const Setup& s) {
+  if (!opt.reference_exprs.empty()) return analytic_reference(opt, s);
   if (!opt.reference_file.empty()) return read_reference(opt, s.info, s.names, s.units);
   return run_reference(opt, s.src, s.info, s.channels, s.names, s.units);
 }
@@ -276,7 +345,7 @@ void run_cases(const Options& opt, const Setup& s, const std::vector<Case>& case
       tasks, todo,
       [&](const TaskEnd& e) {
         const auto k = static_cast<std::size_t>(e.index);
-        results[k] = evaluate(cases[k], e.run, ref, rows, s.norm, scale);
+        results[k] = evaluate(cases[k], e.run, ref, rows, s.measure, s.units, scale);
         say(opt, case_line(k + 1, cases.size(), results[k]));
         on_case_done();
       },
@@ -314,6 +383,7 @@ std::vector<Column> case_columns(const std::vector<CaseResult>& rows) {
   num("error", "error", Column::Kind::Real, [](const CaseResult& r) { return r.error; });
   num("wall", "wall", Column::Kind::Real, [](const CaseResult& r) { return r.wall; });
   num("rows", "rows", Column::Kind::Integer, [](const CaseResult& r) { return double(r.rows); });
+  text("error_channel", "error_channel", [](const CaseResult& r) { return r.error_channel; });
   for (const auto& f : stat_fields()) {
     const std::string name = keys.count(f.name) ? std::string(f.name) + "_taken" : f.name;
     const auto get = f.get;
@@ -401,6 +471,33 @@ std::string md_header(const std::string& title, const StudyInfo& info, const Opt
 std::string status_cell(const CaseResult& r) {
   if (r.status == CaseStatus::failed) return "failed: " + md_cell(r.message, 70);
   return to_text(r.status);
+}
+
+std::string errors_csv(const std::vector<CaseResult>& cases, const Reference& ref,
+                       const std::vector<int>& rows, const StudyInfo& info) {
+  const ChannelErrors scales =
+      channel_errors(ref.y, ref.y, rows, parse_measure(info.norm), ref.units);
+  std::ostringstream os;
+  os << "case,label,channel,unit,scale,error,sets_error\n";
+  for (std::size_t k = 0; k < cases.size(); ++k) {
+    const CaseResult& r = cases[k];
+    for (std::size_t c = 0; c < ref.names.size(); ++c) {
+      const double e = c < r.channel_error.size() ? r.channel_error[c] : kNaN;
+      os << k << "," << csv_field(r.c.label) << "," << csv_field(ref.names[c]) << ","
+         << csv_field(c < ref.units.size() ? ref.units[c] : "") << "," << gnum(scales.scale[c], 9)
+         << "," << gnum(e, 9) << "," << (!std::isnan(e) && ref.names[c] == r.error_channel ? 1 : 0)
+         << "\n";
+    }
+  }
+  return os.str();
+}
+
+void write_channel_errors_h5(hid_t g, const std::vector<CaseResult>& cases, std::size_t channels) {
+  std::vector<double> v(cases.size() * channels, kNaN);
+  for (std::size_t k = 0; k < cases.size(); ++k)
+    for (std::size_t c = 0; c < channels && c < cases[k].channel_error.size(); ++c)
+      v[k * channels + c] = cases[k].channel_error[c];
+  h5::write_doubles(g, "channel_error", {cases.size(), channels}, v.data());
 }
 
 void write_reference_h5(hid_t file, const Reference& ref, const std::vector<int>& rows) {

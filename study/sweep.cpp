@@ -105,7 +105,7 @@ SweepResult sweep(const Options& opt, const SweepOptions& so) {
                        gnum(so.max_order, 6) + "]");
   if (!opt.reference_file.empty())
     throw InputError("--reference-file does not apply to a sweep (no errors are measured)");
-  if (!opt.window.empty() || opt.norm != "max")
+  if (!opt.window.empty() || opt.norm != kDefaultNorm)
     throw InputError("--window and --norm do not apply to a sweep (it measures no error)");
   Options probe_opt = opt;
   probe_opt.window = "all";  // no error window: nothing to check or say about it

@@ -9,6 +9,7 @@
 #include <type_traits>
 
 #include "integrators/settings.h"
+#include "study/case_grid.h"
 #include "study/report.h"
 
 namespace evas::study {
@@ -153,10 +154,15 @@ std::string pack_task(const TaskSpec& t) {
   w.text(t.src.text);
   w.raw<std::uint8_t>(t.src.edited);
   const auto& keys = integrator_settings();
-  w.raw<std::uint64_t>(keys.size());
+  // a plug-in's own settings follow the built-in ones (none: the bytes as before)
+  w.raw<std::uint64_t>(keys.size() + t.settings.own.size());
   for (const auto& k : keys) {
     w.text(k.key);
     w.text(get_integrator_setting(t.settings, k.key));
+  }
+  for (const auto& [key, value] : t.settings.own) {
+    w.text(key);
+    w.text(number_text(value));
   }
   w.raw<std::uint64_t>(t.channels.size());
   for (int c : t.channels) w.raw<std::int32_t>(c);

@@ -25,22 +25,34 @@ std::vector<Case> expand_all(const std::vector<CaseInput>& specs, const Integrat
   return cases;
 }
 
-// Family of a case for the plots: its label without the precision knobs, so
-// one curve joins the cases that differ only in tolerance or step.
+// Family of a case for the plots: its label without the accuracy knobs (rtol,
+// atol, step: what moves a point along its curve) and without the other
+// precision knobs its spec sweeps, so that one curve joins the cases that
+// differ only in tolerance or step, and cases that differ in any other
+// setting (a fixed balance_tol, max_step, a plug-in's own setting) are curves
+// of their own.
 std::string family_of(const Case& c) {
-  static const std::set<std::string> knobs = {"rtol",        "atol",     "step",
-                                              "balance_tol", "max_step", "min_step"};
-  return strip_keys(settings_label(c.settings), knobs);
+  static const std::set<std::string> knobs = {"balance_tol", "max_step", "min_step"};
+  std::set<std::string> strip = {"rtol", "atol", "step"};
+  for (const auto& k : c.swept)
+    if (knobs.count(k)) strip.insert(k);
+  return strip_keys(settings_label(c.settings), strip);
 }
 
 // The figure study.png, drawn by the code `evas plot work-precision` uses
 // (plot/study_figures.h).
 void plot_work_precision(const Options& opt, const WorkPrecisionResult& res, StudyInfo& info) {
-  WorkPrecisionData d{info.scene_name, info.window, info.norm, {}};
+  WorkPrecisionData d;
+  d.scene_name = info.scene_name;
+  d.window = info.window;
+  d.norm = info.norm;
+  d.reference = res.reference.description;
+  d.work = opt.work;
+  const std::string field = work_axis(opt.work).field;
   for (const auto& r : res.cases)
     if (r.status == CaseStatus::completed)
-      d.points.push_back(
-          {family_of(r.c), r.wall, r.error, static_cast<double>(r.stats.residual_evals)});
+      for (const auto& f : stat_fields())
+        if (field == f.name) d.points.push_back({family_of(r.c), r.wall, r.error, f.get(r.stats)});
   const fs::path png = fs::path(info.out_dir) / "study.png";
   const std::string gp = work_precision_script(d, png);
   if (!gp.empty()) plot(opt, fs::path(info.out_dir) / "study.gp", gp, info, png);
@@ -54,31 +66,37 @@ void write_work_precision(const Options& opt, WorkPrecisionResult& res,
   const std::vector<Column> cols = case_columns(res.cases);
   write_file_atomic(dir / "study.csv", columns_csv(cols, res.cases.size()));
   info.files.push_back((dir / "study.csv").string());
+  write_file_atomic(dir / "errors.csv", errors_csv(res.cases, res.reference, rows, info));
+  info.files.push_back((dir / "errors.csv").string());
 
   std::ostringstream md;
   md << md_header("Work-precision study", info, opt, res.reference);
-  md << "| case | status | error | wall [s] | steps | residuals | Jacobians | factorisations | "
-        "iterations | rejected steps | substeps |\n"
-        "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+  md << "| case | status | error | set by | wall [s] | steps | residuals | Jacobians | "
+        "factorisations | iterations | rejected steps | substeps |\n"
+        "|---|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|\n";
   for (const auto& r : res.cases) {
     const bool ran = r.status != CaseStatus::not_run;
     auto n = [&](long v) { return ran ? std::to_string(v) : std::string(); };
     md << "| " << md_cell(r.c.label) << " | " << status_cell(r) << " | " << sci(r.error, 2) << " | "
-       << gnum(r.wall, 4) << " | " << n(r.stats.steps) << " | " << n(r.stats.residual_evals)
-       << " | " << n(r.stats.jacobian_evals) << " | " << n(r.stats.linear_setups) << " | "
-       << n(r.stats.nonlinear_iterations) << " | "
+       << md_cell(r.error_channel) << " | " << gnum(r.wall, 4) << " | " << n(r.stats.steps) << " | "
+       << n(r.stats.residual_evals) << " | " << n(r.stats.jacobian_evals) << " | "
+       << n(r.stats.linear_setups) << " | " << n(r.stats.nonlinear_iterations) << " | "
        << n(r.stats.error_test_failures + r.stats.convergence_failures) << " | "
        << n(r.stats.substeps) << " |\n";
   }
   md << "\nrejected steps = error-test plus convergence failures; factorisations = linear "
-        "setups; iterations = nonlinear iterations. All statistics: study.csv, study.h5.\n";
+        "setups; iterations = nonlinear iterations; set by = the channel whose error is the "
+        "case's. "
+        "All statistics: study.csv, study.h5; every channel's error: errors.csv.\n";
   write_file_atomic(dir / "study.md", md.str());
   info.files.push_back((dir / "study.md").string());
 
   write_h5_atomic(dir / "study.h5", [&](hid_t f) {
     write_info_attributes(f, "work-precision", info, opt);
+    h5::write_attribute(f, "work", opt.work);
     h5::Handle g = h5::create_group(f, "cases");
     write_columns_h5(g, cols);
+    write_channel_errors_h5(g, res.cases, res.reference.names.size());
     // each case's family (a curve of the figure: evas plot work-precision)
     std::vector<std::string> families;
     for (const auto& r : res.cases) families.push_back(family_of(r.c));
@@ -103,7 +121,8 @@ WorkPrecisionResult work_precision(const Options& opt, const std::vector<CaseInp
   std::vector<CaseInput> specs = specs_in;
   if (specs.empty())
     for (const auto& d : default_work_precision_cases()) specs.push_back({d, ""});
-  const std::vector<Case> cases = expand_all(specs, s.info.integrator);
+  std::vector<Case> cases = expand_all(specs, s.info.integrator);
+  tie_iteration_tolerance(opt, cases, s.info.integrator);
   if (opt.reference_file.empty()) reference_case(opt.reference, s.info.integrator);
 
   WorkPrecisionResult res;

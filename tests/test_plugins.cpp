@@ -15,6 +15,7 @@
 
 #include "integrators/integrator.h"
 #include "integrators/plugin.h"
+#include "integrators/settings.h"
 #include "io/results.h"
 #include "sdof_problem.h"
 
@@ -146,4 +147,85 @@ TEST(Plugins, EvasRunsTheDemoWithThePluginAndAgreesWithIda) {
             1);
   EXPECT_NE(read_text(tmp.path / "log").find("nothing.so': no such file"), std::string::npos)
       << read_text(tmp.path / "log");
+}
+
+// A plug-in with a setting of its own: examples/hht_plugin (HHT-alpha, Hilber,
+// Hughes & Taylor 1977). Its alpha is declared, reached by --set, checked
+// against its range, listed by --help-settings, named in the case labels of a
+// study; at alpha = -1/3 HHT-alpha is generalized-alpha with rho_inf = 1/2
+// (Chung & Hulbert 1993: alpha_m = 0, alpha_f = 1/3, gamma = 5/6, beta = 4/9),
+// so the two runs agree to the bit.
+TEST(Plugins, HhtPluginDeclaresAlphaThatSetReaches) {
+  TempDir tmp;
+  const std::string scene = std::string(EVAS_SOURCE_DIR) + "/scenes/demo.yaml";
+  const std::string plug = " --plugin " + std::string(EVAS_HHT_PLUGIN);
+  const std::string base = kEvas.string() + " run " + scene + " -q --t-end 0.02 --csv";
+  const std::string log = " > " + (tmp.path / "log").string() + " 2>&1";
+  ASSERT_EQ(shell(base + plug + " --integrator hht-alpha --set alpha=-0.3333333333333333 --out " +
+                  (tmp.path / "hht").string() + log),
+            0)
+      << read_text(tmp.path / "log");
+  ASSERT_EQ(shell(base + " --integrator generalized-alpha --set rho_inf=0.5 --out " +
+                  (tmp.path / "ga").string() + log),
+            0)
+      << read_text(tmp.path / "log");
+  EXPECT_EQ(read_text(tmp.path / "hht" / "results.csv"),
+            read_text(tmp.path / "ga" / "results.csv"));
+  EXPECT_NE(read_text(tmp.path / "hht" / "summary.json").find("\"alpha\": -0.33333333333333331"),
+            std::string::npos);
+  // the default alpha (-0.05) is another method: other numbers
+  ASSERT_EQ(
+      shell(base + plug + " --integrator hht-alpha --out " + (tmp.path / "hht0").string() + log),
+      0);
+  EXPECT_NE(read_text(tmp.path / "hht0" / "results.csv"),
+            read_text(tmp.path / "ga" / "results.csv"));
+  // out of range, and a setting no loaded integrator declares
+  EXPECT_EQ(shell(base + plug + " --integrator hht-alpha --set alpha=-0.5 --out " +
+                  (tmp.path / "bad").string() + log),
+            1);
+  EXPECT_NE(read_text(tmp.path / "log").find("alpha: -0.5 is outside [-0.3333333333333333, 0]"),
+            std::string::npos)
+      << read_text(tmp.path / "log");
+  EXPECT_EQ(shell(base + " --integrator generalized-alpha --set alpha=-0.1 --out " +
+                  (tmp.path / "bad2").string() + log),
+            1);
+  EXPECT_NE(read_text(tmp.path / "log").find("'alpha' is not an integrator setting"),
+            std::string::npos)
+      << read_text(tmp.path / "log");
+  // --help-settings lists it; a study's case grid sweeps it and its labels name it
+  ASSERT_EQ(shell(kEvas.string() + " run --help-settings" + plug + log), 0);
+  EXPECT_NE(read_text(tmp.path / "log").find("| `alpha` | -0.05 | hht-alpha (its own) |"),
+            std::string::npos)
+      << read_text(tmp.path / "log");
+  ASSERT_EQ(shell(kEvas.string() + " study work-precision " + scene + plug +
+                  " --t-end 0.02 --no-plot -q --case 'hht-alpha alpha=-0.3,-0.1 step=1e-4' "
+                  "--out " +
+                  (tmp.path / "study").string() + log),
+            0)
+      << read_text(tmp.path / "log");
+  const std::string csv = read_text(tmp.path / "study" / "study.csv");
+  EXPECT_NE(csv.find(" step=0.0001 alpha=-0.3,hht-alpha,"), std::string::npos) << csv;
+  EXPECT_NE(csv.find(" step=0.0001 alpha=-0.1,hht-alpha,"), std::string::npos) << csv;
+}
+
+TEST(Plugins, RegistryRefusesBadDeclaredSettings) {
+  auto make = [] { return make_integrator("cvode"); };
+  IntegratorCapabilities caps;
+  caps.declared = true;
+  caps.settings.push_back({"rtol", false, 0.0, -1.0, 1.0, "clash"});
+  EXPECT_THROW(register_integrator("own-a", make, "", caps), InputError);
+  caps.settings = {{"Bad Key", false, 0.0, -1.0, 1.0, ""}};
+  EXPECT_THROW(register_integrator("own-b", make, "", caps), InputError);
+  caps.settings = {{"gain", false, 5.0, -1.0, 1.0, "default outside"}};
+  EXPECT_THROW(register_integrator("own-c", make, "", caps), InputError);
+  caps.settings = {{"gain", true, 2.0, 0.0, 10.0, "a whole number"}};
+  register_integrator("own-d", make, "", caps);
+  IntegratorSettings s;
+  s.name = "own-d";
+  EXPECT_EQ(own_setting(s, "gain"), 2.0);
+  set_integrator_setting(s, "gain", "7");
+  EXPECT_EQ(own_setting(s, "gain"), 7.0);
+  EXPECT_EQ(get_integrator_setting(s, "gain"), "7");
+  EXPECT_THROW(set_integrator_setting(s, "gain", "7.5"), InputError);
+  EXPECT_NE(settings_label(s).find(" gain=7"), std::string::npos) << settings_label(s);
 }

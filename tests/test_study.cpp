@@ -26,6 +26,7 @@
 #include "model/modal_body.h"
 #include "plot/figures.h"
 #include "solver/system.h"
+#include "study/expression.h"
 #include "study/study.h"
 
 using namespace evas;
@@ -351,6 +352,144 @@ TEST(StudyMeasure, ErrorIsRelativeToEachChannelsAmplitude) {
   EXPECT_EQ(select_channels(cj, "pin.*.g"), (std::vector<int>{1}));
 }
 
+// The measures of --norm on two units: a force channel that swings 1e3 N, one
+// that barely moves (1e-2 N), and a displacement of 1e-3 m. Every expected
+// value follows from the definitions in study/measure.h by hand.
+TEST(StudyMeasure, EveryNormOnAGroupWithAStillChannel) {
+  const int nt = 100;
+  Mat ref(nt, 3), y(nt, 3);
+  for (int i = 0; i < nt; ++i) {
+    const double s = std::sin(2 * M_PI * 0.01 * i);
+    ref(i, 0) = 1e3 * s;         // N, amplitude 1e3
+    ref(i, 1) = 1e-2 * s;        // N, amplitude 1e-2: still beside channel 0
+    ref(i, 2) = 1e-3 * s;        // m, amplitude 1e-3
+    y(i, 0) = ref(i, 0) + 1.0;   // 1e-3 of its amplitude
+    y(i, 1) = ref(i, 1) + 1e-3;  // 0.1 of its own amplitude, 1e-6 of the group's
+    y(i, 2) = ref(i, 2) + 2e-6;  // 2e-3 of its amplitude
+  }
+  y(nt - 1, 0) += 4.0;  // the last time: channel 0 off by 5
+  std::vector<int> all(nt);
+  for (int i = 0; i < nt; ++i) all[i] = i;
+  const std::vector<std::string> units = {"N", "N", "m"};
+  auto errs = [&](const std::string& norm) {
+    return channel_errors(y, ref, all, parse_measure(norm), units);
+  };
+  // channel: the still channel sets the error (0.1)
+  const auto ch = errs("channel");
+  EXPECT_NEAR(ch.total, 0.1, 1e-9);
+  EXPECT_EQ(ch.worst, 1);
+  EXPECT_NEAR(errs("max").total, 0.1, 1e-9);
+  // group: the still channel on 1e3 N (1e-6); channel 0's spike 5/1e3 sets it
+  const auto gr = errs("group");
+  EXPECT_NEAR(gr.error[1], 1e-6, 1e-12);
+  EXPECT_NEAR(gr.error[2], 2e-3, 1e-12);
+  EXPECT_NEAR(gr.total, 5e-3, 1e-12);
+  EXPECT_EQ(gr.worst, 0);
+  EXPECT_NEAR(gr.scale[1], 1e3, 1e-9);
+  // floor=0.1: the still channel counts on 100 N
+  const auto fl = errs("floor=0.1");
+  EXPECT_NEAR(fl.error[1], 1e-5, 1e-12);
+  EXPECT_NEAR(fl.error[2], 2e-3, 1e-12);
+  EXPECT_NEAR(errs("floor=0").total, ch.total, 1e-15);
+  // final: the last row only, on the group's amplitude
+  const auto fi = errs("final");
+  EXPECT_NEAR(fi.error[0], 5e-3, 1e-12);
+  EXPECT_NEAR(fi.error[2], 2e-3, 1e-12);
+  // l2: sqrt(sum d^2 / sum swing^2) per unit group
+  double sw0 = 0, sw1 = 0, d0 = 0;
+  for (int i = 0; i < nt; ++i) {
+    sw0 += ref(i, 0) * ref(i, 0);
+    sw1 += ref(i, 1) * ref(i, 1);
+    d0 += (y(i, 0) - ref(i, 0)) * (y(i, 0) - ref(i, 0));
+  }
+  const auto l2 = errs("l2");
+  EXPECT_NEAR(l2.error[0], std::sqrt(d0 / (sw0 + sw1)), 1e-12);
+  EXPECT_NEAR(l2.error[1], std::sqrt(nt * 1e-6 / (sw0 + sw1)), 1e-15);
+  // the m group (2e-6 / (1e-3 / sqrt(2)) = 2.8e-3) beats the N group (1.6e-3)
+  EXPECT_NEAR(l2.error[2], 2e-6 * std::sqrt(2.0) / 1e-3, 1e-12);
+  EXPECT_LT(std::hypot(l2.error[0], l2.error[1]), l2.error[2]);
+  EXPECT_NEAR(l2.total, l2.error[2], 1e-15);
+  EXPECT_EQ(l2.worst, 2);
+  // rms on each channel's own amplitude
+  EXPECT_NEAR(errs("rms").error[1], 0.1, 1e-9);
+  // without units one group: the displacement counts on 1e3 as well
+  EXPECT_NEAR(channel_errors(y, ref, all, parse_measure("group"), {}).error[2], 2e-9, 1e-15);
+  // texts and bad values
+  EXPECT_EQ(measure_text(parse_measure("floor=0.01")), "floor=0.01");
+  EXPECT_EQ(measure_text(parse_measure("max")), "channel");
+  EXPECT_EQ(std::string(kDefaultNorm), "group");
+  EXPECT_NE(input_error([] { parse_measure("floor=2"); }).find("[0, 1]"), std::string::npos);
+  EXPECT_NE(input_error([] { parse_measure("mean"); }).find("expected group, channel"),
+            std::string::npos);
+  EXPECT_NE(error_definition(parse_measure("l2"), parse_window("all")).find("--norm l2"),
+            std::string::npos);
+}
+
+// Expressions of t for analytic references (study/expression.h).
+TEST(StudyMeasure, ExpressionsOfTime) {
+  EXPECT_DOUBLE_EQ(Expression("1 + 2 * 3", "x")(0.0), 7.0);
+  EXPECT_DOUBLE_EQ(Expression("-2^2", "x")(0.0), -4.0);    // power binds tighter than minus
+  EXPECT_DOUBLE_EQ(Expression("2^3^2", "x")(0.0), 512.0);  // right-associative
+  EXPECT_DOUBLE_EQ(Expression("(1 + t) / 4", "x")(3.0), 1.0);
+  EXPECT_NEAR(Expression("1e-3*sin(2*pi*50*t)", "x")(0.005), 1e-3, 1e-15);
+  EXPECT_NEAR(Expression("exp(1) - e + sqrt(abs(-16)) + cos(0)", "x")(0.0), 5.0, 1e-15);
+  EXPECT_NE(
+      input_error([] { Expression("sin(t", "--reference-expr c.px"); }).find("')' is missing"),
+      std::string::npos);
+  EXPECT_NE(
+      input_error([] { Expression("2 * foo(t)", "x"); }).find("unknown name 'foo' at column 5"),
+      std::string::npos);
+  EXPECT_NE(input_error([] { Expression("1 +", "x"); }).find("an operand is missing"),
+            std::string::npos);
+  EXPECT_NE(input_error([] { Expression("1 2", "x"); }).find("unexpected '2'"), std::string::npos);
+}
+
+// The oscillator against its closed form: the spring force is
+// k (v0 / sqrt(m)) / omega sin(omega t) (v0 the rigid mode's velocity, the
+// modes mass-normalised); generalized-alpha without dissipation is second order
+// against it (Chung & Hulbert 1993).
+TEST(StudyConvergence, AnalyticReferenceGivesTheOrder) {
+  TempDir dir("analytic");
+  const std::string scene = dir.write("osc.yaml", oscillator_scene(0.02, 1e-3));
+  Options o = quiet_options(scene, dir.path() / "ida");
+  o.channels = "spring.fx";
+  o.reference = "ida rtol=1e-12 atol=1e-16";
+  const auto wp = work_precision(o, {{"ida rtol=1e-10", ""}});
+  const double w = oscillator_omega(), amp = kStiffness * 0.1 / std::sqrt(oscillator_mass()) / w;
+  // the sign of the channel: from the reference run a quarter period in
+  const double tq = M_PI / (2 * w);
+  const std::size_t kq = static_cast<std::size_t>(std::lround(tq / 1e-3));
+  const double sign = wp.reference.y(static_cast<long>(kq), 0) > 0 ? 1.0 : -1.0;
+  std::ostringstream expr;
+  expr.precision(17);
+  expr << "spring.fx=" << sign * amp << "*sin(" << w << "*t)";
+  Options a = quiet_options(scene, dir.path() / "analytic");
+  a.reference_exprs = {expr.str()};
+  // the reference run itself is on the closed form to 1e-8
+  const auto check = work_precision(a, {{"ida rtol=1e-12 atol=1e-16", ""}});
+  ASSERT_EQ(check.cases[0].status, CaseStatus::completed) << check.cases[0].message;
+  EXPECT_LT(check.cases[0].error, 1e-7);
+  EXPECT_EQ(check.reference.description.rfind("analytic: spring.fx = ", 0), 0u)
+      << check.reference.description;
+  const auto res =
+      convergence(a, {"generalized-alpha rho_inf=1 step_control=fixed rtol=1e-12 atol=1e-16 "
+                      "step=4e-5,2e-5,1e-5",
+                      ""});
+  std::cout << "analytic reference: observed order " << res.slope << "\n";
+  EXPECT_NEAR(res.slope, 2.0, 0.05);
+  // bad expressions and names are input errors before any run
+  a.reference_exprs = {"spring.fq=t"};
+  EXPECT_NE(input_error([&] {
+              convergence(a, {"ida rtol=1e-3,1e-4", ""});
+            }).find("spring.fq"),
+            std::string::npos);
+  a.reference_exprs = {"spring.fx=sin(t"};
+  EXPECT_NE(input_error([&] {
+              convergence(a, {"ida rtol=1e-3,1e-4", ""});
+            }).find("')' is missing"),
+            std::string::npos);
+}
+
 // --- status text ---------------------------------------------------------------------
 
 // The enums are written as these exact words (csv, md, h5, console).
@@ -440,7 +579,31 @@ TEST(StudyWorkPrecision, FailedCaseIsRecordedAndTheOthersHaveFiniteErrors) {
     EXPECT_EQ(dims[0], res.reference.time.size());
     EXPECT_EQ(dims[1], res.reference.names.size());
     EXPECT_EQ(h5::read_string_attribute(f, "study"), "work-precision");
+    EXPECT_EQ(h5::read_string_attribute(f, "norm"), "group");
+    h5::read_doubles(f, "cases/channel_error", dims);
+    ASSERT_EQ(dims.size(), 2u);
+    EXPECT_EQ(dims[1], res.reference.names.size());
   }
+  // errors.csv: every case x channel, exactly one channel marked per completed
+  // case, and it is the one study.csv names
+  std::ifstream ef(out / "errors.csv");
+  std::getline(ef, line);
+  EXPECT_EQ(line, "case,label,channel,unit,scale,error,sets_error");
+  std::vector<int> marked(6, 0);
+  int erows = 0;
+  while (std::getline(ef, line)) {
+    ++erows;
+    if (line.substr(line.size() - 2) == ",1") {
+      const int k = std::stoi(line.substr(0, line.find(',')));
+      ++marked[static_cast<std::size_t>(k)];
+      EXPECT_NE(line.find("," + res.cases[static_cast<std::size_t>(k)].error_channel + ","),
+                std::string::npos)
+          << line;
+    }
+  }
+  EXPECT_EQ(erows, static_cast<int>(6 * res.reference.names.size()));
+  for (std::size_t k = 0; k + 1 < 6; ++k) EXPECT_EQ(marked[k], 1) << k;
+  EXPECT_EQ(marked[5], 0);  // the failed case has no error
   const double s = seconds_since(t0);
   std::cout << "work-precision study: " << s << " s\n";
   EXPECT_LT(s, 20.0);

@@ -49,7 +49,19 @@ RunError = _evas.RunError
 integrators = _evas.integrators
 load_plugin = _evas.load_plugin
 
-__all__ = ["Model", "read_results", "integrators", "load_plugin", "InputError", "RunError"]
+problems = _evas.problems
+
+__all__ = [
+    "Model",
+    "Problem",
+    "problems",
+    "read_results",
+    "write_results",
+    "integrators",
+    "load_plugin",
+    "InputError",
+    "RunError",
+]
 
 
 def _csc(parts):
@@ -82,7 +94,11 @@ class Model(_evas.Model):
     constraint_names, constraint(t, q, v) -> (g, g', ga) with
     d(g')/dt = G qdd + ga, constraint_jacobian(t, q) -> G, consistent_state(t,
     q, v) -> (q, v, lambda) projected onto the constraints. residual, rhs and
-    their Jacobians are those of the unconstrained part.
+    their Jacobians are those of the unconstrained part; the full DAE in a
+    formulation (index-3, index-2, ggl = "default", index-1), y = [q; v;
+    lambda (; mu); z]: dae_size(formulation), dae_residual(t, y, yd,
+    formulation), dae_iteration_matrix(t, y, yd, cj, formulation),
+    dae_consistent_start(t, q, v, formulation) -> (y, yd, max |F|).
     """
 
     def __init__(self, scene=None, params=None, text=None, base_dir=None):
@@ -112,6 +128,11 @@ class Model(_evas.Model):
         """G = dg/dq (m x n) as scipy.sparse.csc_matrix (fixed pattern)."""
         return _csc(self._constraint_jacobian(t, q))
 
+    def dae_iteration_matrix(self, t, y, yd, cj, formulation="default"):
+        """dF/dy + cj dF/dyd of dae_residual (the jointed scene's full DAE in a
+        formulation) as scipy.sparse.csc_matrix."""
+        return _csc(self._dae_iteration_matrix(t, y, yd, cj, formulation))
+
     def run(self, integrator="", settings=None, t_end=None):
         """Runs the scene with an integrator (the scene's when "") and settings
         {key: value} (evas run --help-settings); t_end overrides the scene's end.
@@ -120,11 +141,70 @@ class Model(_evas.Model):
         return self._run(integrator, dict(settings or {}), t_end)
 
 
+class Problem(_evas.Problem):
+    """A problem of `evas problem` (evas.problems() lists them; IVP Test Set
+    problems with their published end points, docs/problems.md).
+
+    Problem("andrews", formulation="ggl"): a constrained mechanical problem
+    M(q) qdd + f(t, q, v) + G^T lambda = 0, g(t, q) = 0, with its parts
+    force(t, q, v), jacobian(t, q, v) -> (K, C), mass(t, q) -> M,
+    constraint(t, q, v) -> (g, g', ga), constraint_jacobian(t, q) -> G, and
+    the residual of its DAE in a formulation (index-3, index-2, ggl, index-1;
+    "default" = ggl), y = [q; v; lambda (; mu)]: residual(t, y, yd),
+    iteration_matrix(t, y, yd, cj) = dF/dy + cj dF/dyd, consistent_start(t, q,
+    v) -> (y, yd, max |F|). A first-order problem (first_order: chemakzo,
+    transamp, wheelset), M y' = f(t, y): mass_matrix(), rhs(t, y),
+    residual(t, y, yd) = M yd - f and iteration_matrix (dense).
+    reference() -> the published end point; score(q, v, lambda_, rtol, atol)
+    (first order: score(y, rtol=..., atol=...)) -> the test set's mescd, scd.
+    Sparse matrices are scipy.sparse.csc_matrix.
+    """
+
+    def __init__(self, name, formulation="default"):
+        super().__init__(name, formulation)
+
+    def jacobian(self, t, q, v):
+        """K = df/dq and C = df/dv as scipy.sparse.csc_matrix."""
+        K, C = self._jacobian(t, q, v)
+        return _csc(K), _csc(C)
+
+    def mass(self, t, q):
+        """M(q) as scipy.sparse.csc_matrix (the identity without a mass matrix)."""
+        return _csc(self._mass(t, q))
+
+    def constraint_jacobian(self, t, q):
+        """G = dg/dq (m x n) as scipy.sparse.csc_matrix."""
+        return _csc(self._constraint_jacobian(t, q))
+
+    def iteration_matrix(self, t, y, yd, cj):
+        """dF/dy + cj dF/dyd of the residual: scipy.sparse.csc_matrix (a NumPy
+        array for a first-order problem)."""
+        J = self._iteration_matrix(t, y, yd, cj)
+        return J if self.first_order else _csc(J)
+
+
 def _setting_text(v):
     """A Python value as evas reads it: repr keeps every digit of a float."""
     if isinstance(v, bool):
         return "true" if v else "false"
     return repr(v) if isinstance(v, float) else str(v)
+
+
+def write_results(path, time, values, channels, units=None, source="python"):
+    """Writes a results file evas reads (read_results, and `evas study
+    --reference-file` as a reference computed in Python): time (rows),
+    values (rows x channels), channel names and units; `source` is recorded
+    as the file's integrator."""
+    import numpy as np
+
+    return _evas._write_results(
+        _os.fspath(path),
+        np.asarray(time, dtype=float),
+        np.asarray(values, dtype=float),
+        list(channels),
+        list(units or []),
+        source,
+    )
 
 
 def read_results(path):

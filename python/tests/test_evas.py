@@ -235,6 +235,27 @@ def test_joints_from_python():
     assert pen["status"] == "completed" and pen["stats"]["max_constraint"] < 1e-5
 
 
+@pytest.mark.parametrize("form", ["index-3", "index-2", "default", "index-1"])
+def test_joints_full_dae_residual(form):
+    """The jointed scene's full DAE (dae/formulation.h): consistent start with
+    a zero residual, the iteration matrix against central differences."""
+    m = evas.Model(os.path.join(SRC, "scenes", "hinged_beam.yaml"))
+    q, v = state(m, 4)
+    y, yd, r = m.dae_consistent_start(0.0, q, v, form)
+    n, mc = m.size, m.constraint_count
+    assert len(y) == m.dae_size(form) >= 2 * n + mc and r < 1e-9
+    assert np.abs(m.dae_residual(0.0, y, yd, form)).max() < 1e-9
+    rng = np.random.default_rng(5)
+    y1, yd1, cj = y + 1e-6 * rng.standard_normal(len(y)), yd + 1e-3 * rng.standard_normal(len(y)), 1e3
+    J = m.dae_iteration_matrix(0.0, y1, yd1, cj, form).toarray()
+    h = 1e-7
+    Jfd = np.column_stack([
+        (m.dae_residual(0.0, y1 + h * e, yd1 + cj * h * e, form)
+         - m.dae_residual(0.0, y1 - h * e, yd1 - cj * h * e, form)) / (2 * h)
+        for e in np.eye(len(y))])
+    assert np.abs(J - Jfd).max() < 1e-5 * (1 + np.abs(Jfd).max())
+
+
 @pytest.mark.parametrize("case", ["states", "beam"])
 def test_run_gives_the_rows_of_evas_run(case):
     """One run for every front end (run/run.h): Model.run gives the rows of
@@ -264,3 +285,96 @@ def test_run_gives_the_rows_of_evas_run(case):
     np.testing.assert_array_equal(r["values"], ref["values"])
     if case == "beam":
         assert sum(c.endswith(".lambda") for c in r["channels"]) == 5
+
+
+def _fd_iteration_matrix(p, t, y, yd, cj, h=1e-7):
+    """dF/dy + cj dF/dyd by central differences of p.residual."""
+    n = len(y)
+    J = np.zeros((n, n))
+    for k in range(n):
+        e = np.zeros(n)
+        e[k] = h * max(1.0, abs(y[k]))
+        J[:, k] = (p.residual(t, y + e, yd + cj * e) - p.residual(t, y - e, yd - cj * e)) / (
+            2 * e[k]
+        )
+    return J
+
+
+@pytest.mark.parametrize("form", ["index-3", "ggl", "index-1"])
+def test_problem_residual_of_andrews(form):
+    """Andrews' squeezing mechanism (IVP Test Set; Hairer & Wanner 1996, VII.7):
+    the consistent start satisfies the DAE of every formulation, and the
+    iteration matrix matches differences of the residual."""
+    assert "andrews" in evas.problems()
+    p = evas.Problem("andrews", formulation=form)
+    assert p.size == 7 and p.constraint_count == 6 and p.formulation == form
+    q, v = p.initial_state()
+    y, yd, r = p.consistent_start(0.0, q, v)
+    assert len(y) == p.dae_size and r < 1e-10
+    assert np.max(np.abs(p.residual(0.0, y, yd))) < 1e-8
+    g, gv, ga = p.constraint(0.0, q, v)
+    assert np.max(np.abs(g)) < 1e-12
+    G = p.constraint_jacobian(0.0, q)
+    assert G.shape == (6, 7)
+    M = p.mass(0.0, q)
+    assert M.shape == (7, 7) and np.allclose(M.toarray(), M.toarray().T)
+    rng = np.random.default_rng(3)
+    y1 = y + 1e-3 * rng.standard_normal(len(y))
+    yd1 = yd + 1e-3 * rng.standard_normal(len(y))
+    J = p.iteration_matrix(0.0, y1, yd1, 50.0).toarray()
+    Jfd = _fd_iteration_matrix(p, 0.0, y1, yd1, 50.0)
+    assert np.max(np.abs(J - Jfd)) < 1e-5 * max(1.0, np.max(np.abs(Jfd)))
+
+
+def test_problem_reference_and_score():
+    p = evas.Problem("andrews")
+    ref = p.reference()
+    s = p.score(ref["q"], ref["v"], ref.get("lambda"), rtol=1.0, atol=1.0)
+    assert s["mescd"] == float("inf")
+    q = ref["q"].copy()
+    q[2] += 1e-4 * (1.0 + abs(q[2]))
+    s = p.score(q, ref["v"], rtol=1.0, atol=1.0)
+    assert s["mescd"] == pytest.approx(4.0, abs=1e-9) and s["worst"] == 2
+
+
+def test_problem_first_order():
+    """The chemical Akzo Nobel problem, M y' = f with M singular: the residual
+    M yd - f and its iteration matrix cj M - df/dy against differences."""
+    p = evas.Problem("chemakzo")
+    assert p.first_order and p.size == 6
+    y, yp = p.initial_state()
+    assert np.max(np.abs(p.residual(0.0, y, yp))) < 1e-8
+    M = p.mass_matrix()
+    assert M.shape == (6, 6) and M[5, 5] == 0.0
+    J = p.iteration_matrix(0.0, y, yp, 10.0)
+    Jfd = _fd_iteration_matrix(p, 0.0, y, yp, 10.0, h=1e-8)
+    assert np.max(np.abs(J - Jfd)) < 1e-5 * max(1.0, np.max(np.abs(Jfd)))
+    with pytest.raises(evas.InputError, match="no formulations"):
+        evas.Problem("chemakzo", formulation="index-2")
+    with pytest.raises(evas.InputError, match="no problem named 'andrew'"):
+        evas.Problem("andrew")
+
+
+def test_a_python_reference_for_a_study():
+    """A reference computed in Python (here IDA at rtol 1e-11 through Model.run),
+    written with write_results, read back, and used by `evas study
+    --reference-file`: the study's case is measured against it."""
+    beam = os.path.join(SRC, "scenes", "hinged_beam.yaml")
+    m = evas.Model(beam)
+    ref = m.run("ida", {"rtol": 1e-11, "atol": 1e-14})
+    assert ref["status"] == "completed"
+    with tempfile.TemporaryDirectory() as tmp:
+        path = os.path.join(tmp, "ref.h5")
+        evas.write_results(path, ref["time"], ref["values"], ref["channels"], source="scipy")
+        back = evas.read_results(path)
+        assert back["integrator"] == "scipy" and back["values"].shape == ref["values"].shape
+        np.testing.assert_array_equal(back["values"], ref["values"])
+        out = os.path.join(tmp, "study")
+        subprocess.run([os.environ["EVAS_PROGRAM"], "study", "work-precision", beam,
+                        "--reference-file", path, "--case", "ida rtol=1e-6", "--channels",
+                        "spring.f*", "--out", out, "-q", "--no-plot"], check=True,
+                       stdout=subprocess.DEVNULL)
+        md = open(os.path.join(out, "study.md")).read()
+        assert "ref.h5 (scipy, completed)" in md
+        with pytest.raises(evas.InputError, match="rows x channels"):
+            evas.write_results(path, ref["time"], ref["values"][:, :2], ref["channels"])
