@@ -516,7 +516,6 @@ int stability(const std::vector<std::string>& args) {
   add_common(opts);
   po::variables_map vm;
   if (parse_or_help(args, opts, vm)) return 0;
-  const study::Options o = common_options(vm, "stability");
   if (!vm.count("case")) throw InputError("missing --case SPEC");
   if (!vm.count("step-range")) throw InputError("missing --step-range HMIN:HMAX");
   study::StabilityOptions so;
@@ -535,6 +534,15 @@ int stability(const std::vector<std::string>& args) {
   if (vm.count("sweep")) so.sweep = vm["sweep"].as<std::string>();
   so.growth = vm["growth"].as<double>();
   so.bisections = vm["bisections"].as<int>();
+  if (vm.count("scene") && is_problem(vm["scene"].as<std::string>())) {
+    if (vm.count("sweep")) throw InputError("--sweep applies to scenes, not problem:NAME");
+    study::CheckReport report;
+    problem_stability(vm, args, vm["scene"].as<std::string>(),
+                      vm.count("out") ? vm["out"].as<std::string>() : "", so.h_min, so.h_max,
+                      so.growth, so.bisections, report);
+    return finish_checks(vm, report);
+  }
+  const study::Options o = common_options(vm, "stability");
   SignalGuard guard;
   try {
     const auto res = study::stability(o, {vm["case"].as<std::string>(), ""}, so);

@@ -61,6 +61,7 @@ std::string digits_measure(const po::variables_map& vm) {
 }
 
 double atol_ratio(const po::variables_map& vm) {
+  if (!vm.count("atol-ratio")) return 0.01;  // stability: evas problem's
   const double r = vm["atol-ratio"].as<double>();
   if (!(r > 0.0) || !std::isfinite(r)) throw InputError("--atol-ratio must be a positive number");
   return r;
@@ -485,6 +486,111 @@ void problem_convergence(const po::variables_map& vm, const std::vector<std::str
   if (vm.count("expect"))
     report.checks.push_back(order_check(family + " over " + key + " on " + lp.name, slope, points,
                                         vm["expect"].as<double>(), vm["tolerance"].as<double>()));
+}
+
+void problem_stability(const po::variables_map& vm, const std::vector<std::string>& args,
+                       const std::string& target, const std::string& out, double h_min,
+                       double h_max, double growth, int bisections, study::CheckReport& report) {
+  const Begun b = begin(vm, target);
+  const problems::LibraryProblem& lp = b.lp;
+  if (!vm.count("case")) throw InputError("missing --case SPEC");
+  if (!(h_min > 0.0) || !(h_max > h_min)) throw InputError("--step-range: need 0 < HMIN < HMAX");
+  if (!(growth > 1.0)) throw InputError("--growth must be > 1");
+  const std::string spec = vm["case"].as<std::string>();
+  std::vector<ProblemCase> base = expand(lp, {{spec, ""}}, b.ratio);
+  if (base.size() != 1)
+    throw InputError("--case '" + spec + "': one case (it expands to " +
+                     std::to_string(base.size()) + ")");
+  if (!takes_fixed_steps(base[0].c.settings))
+    throw InputError("--case '" + spec + "': " + base[0].c.settings.name +
+                     " does not take fixed steps (step_control fixed or substep)");
+  double ref_max = 0.0;
+  for (double x : lp.implicit() ? lp.reference_y : lp.reference_qv)
+    ref_max = std::max(ref_max, std::abs(x));
+  struct Trial {
+    double h;
+    bool stable;
+    std::string why;
+    long steps;
+  };
+  std::vector<Trial> trials;
+  const bool quiet = vm.count("quiet") > 0;
+  auto stable = [&](double h) {
+    IntegratorSettings s = base[0].c.settings;
+    s.step = h;
+    ProblemRun r;
+    try {
+      r = run_problem(lp, s);
+    } catch (const InputError& e) {
+      r.failure = e.what();
+    }
+    std::string why = r.failure;
+    if (why.empty()) {
+      double m = 0.0;
+      for (const Vec* v : {&r.q, &r.v, &r.y})
+        for (int i = 0; i < v->size(); ++i) m = std::max(m, std::abs((*v)(i)));
+      if (!std::isfinite(m) || m > growth * ref_max)
+        why = "end point max |y| = " + study::gnum(m, 4) + " > " + study::gnum(growth, 3) +
+              " x the reference's " + study::gnum(ref_max, 4);
+    }
+    trials.push_back({h, why.empty(), why, r.stats.steps});
+    if (!quiet)
+      std::cerr << "evas study: h = " << study::gnum(h, 6) << ": "
+                << (why.empty() ? "stable" : "unstable: " + why) << "\n";
+    return why.empty();
+  };
+  std::string status;
+  double lo = std::numeric_limits<double>::quiet_NaN(), hi = lo;
+  if (stable(h_max)) {
+    status = "stable up to HMAX";
+    lo = h_max;
+  } else if (!stable(h_min)) {
+    // neither end ran a step, for the same reason: the case cannot run here
+    if (trials[0].steps == 0 && trials[1].steps == 0 && trials[0].why == trials[1].why)
+      throw InputError("--case '" + spec + "' does not run on problem " + lp.name + ": " +
+                       trials[0].why);
+    status = "unstable at HMIN";
+    hi = h_min;
+  } else {
+    status = "bracketed";
+    lo = h_min;
+    hi = h_max;
+    for (int k = 0; k < bisections; ++k) {
+      const double mid = std::sqrt(lo * hi);
+      (stable(mid) ? lo : hi) = mid;
+    }
+  }
+  const fs::path dir = out_dir(out, lp);
+  std::ostringstream csv, md;
+  csv << "h,stable,steps,reason\n";
+  for (const auto& t : trials)
+    csv << study::gnum(t.h, 12) << "," << (t.stable ? 1 : 0) << "," << t.steps << ","
+        << csv_field(t.why) << "\n";
+  study::write_file_atomic(dir / "stability.csv", csv.str());
+  md << "# Stability study: problem " << lp.name << "\n\n- case: " << family_of(base[0].c)
+     << ", step searched in [" << study::gnum(h_min, 6) << ", " << study::gnum(h_max, 6) << "] s"
+     << "\n- a step is stable when the run completes and its end point's largest |component| "
+        "is at most "
+     << study::gnum(growth, 3) << " x the published reference's (" << study::gnum(ref_max, 4)
+     << ")\n- result: **" << status << "**; largest stable step "
+     << (std::isnan(lo) ? std::string("none") : study::gnum(lo, 6)) << ", smallest unstable "
+     << (std::isnan(hi) ? std::string("none") : study::gnum(hi, 6))
+     << "\n\n| h [s] | stable | steps | reason |\n|---:|---|---:|---|\n";
+  for (const auto& t : trials)
+    md << "| " << study::gnum(t.h, 6) << " | " << (t.stable ? "yes" : "no") << " | " << t.steps
+       << " | " << study::md_cell(t.why, 90) << " |\n";
+  study::write_file_atomic(dir / "stability.md", md.str());
+  std::cout << md.str();
+  report =
+      study::CheckReport{"stability problem:" + lp.name, command_line("evas study", args), 0.0, {}};
+  if (vm.count("expect-stable-to")) {
+    const double want = vm["expect-stable-to"].as<double>();
+    study::Check c{"largest stable step of " + family_of(base[0].c) + " on " + lp.name,
+                   std::isnan(lo) ? "none" : study::gnum(lo, 6), ">= " + study::gnum(want, 6),
+                   lo >= want, ""};
+    if (!c.passed) c.message = "search " + status + ": largest stable step " + c.measured;
+    report.checks.push_back(c);
+  }
 }
 
 }  // namespace evas::cli

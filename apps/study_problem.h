@@ -39,6 +39,14 @@ IntegratorSettings problem_case_settings(const problems::LibraryProblem& lp, Int
 void problem_work_precision_study(const po::variables_map& vm, const std::vector<std::string>& args,
                                   const std::string& target, const std::string& out,
                                   study::CheckReport& report);
+/// The largest stable fixed step of one case on problem `target` in
+/// [h_min, h_max]: a step is stable when the run completes and the end point's
+/// largest |component| is at most `growth` times the published reference's
+/// (a problem is judged at its end point). h_max first, then h_min, then
+/// `bisections` bisections in log h. Writes stability.csv/.md.
+void problem_stability(const po::variables_map& vm, const std::vector<std::string>& args,
+                       const std::string& target, const std::string& out, double h_min,
+                       double h_max, double growth, int bisections, study::CheckReport& report);
 void problem_convergence(const po::variables_map& vm, const std::vector<std::string>& args,
                          const std::string& target, const std::string& out,
                          study::CheckReport& report);

@@ -243,3 +243,30 @@ TEST(StudyChecks, ASetRunsTheStudyOnEveryTarget) {
   EXPECT_NE(x.find("convergence problem:pendulum"), std::string::npos) << x;
   EXPECT_NE(read(dir / "set.md").find("| problem:andrews | "), std::string::npos);
 }
+
+// Stability on a problem: generalized-alpha on Andrews' mechanism is
+// unconditionally stable for the linear part (Chung & Hulbert 1993); the
+// search finds where its Newton iteration stops converging, and a case that
+// cannot run on the problem is bad input, not an unstable step.
+TEST(StudyChecks, ProblemStabilitySearchAndBadCase) {
+  int code = 0;
+  const fs::path xml = kOut / "stab.xml";
+  std::string text = run_evas(
+      "study stability problem:andrews --case 'generalized-alpha step_control=fixed rtol=1e-10 "
+      "atol=1e-12' --step-range 1e-6:1e-3 --bisections 4 --expect-stable-to 1e-5 --junit " +
+          xml.string() + " -q --out " + (kOut / "stab").string(),
+      code);
+  EXPECT_EQ(code, 0) << text;
+  EXPECT_NE(text.find("result: **bracketed**"), std::string::npos) << text;
+  EXPECT_TRUE(xml_well_formed(xml));
+  const std::string csv = read(kOut / "stab" / "stability.csv");
+  EXPECT_EQ(csv.rfind("h,stable,steps,reason\n", 0), 0u) << csv;
+  EXPECT_EQ(count(csv, "\n"), 1 + 2 + 4) << csv;  // HMAX, HMIN, 4 bisections
+  text = run_evas(
+      "study stability problem:andrews --case 'linear-acceleration step_control=fixed' "
+      "--step-range 1e-7:1e-4 -q --out " +
+          (kOut / "stab2").string(),
+      code);
+  EXPECT_EQ(code, 1) << text;
+  EXPECT_NE(text.find("does not run on problem andrews"), std::string::npos) << text;
+}
