@@ -11,6 +11,7 @@
 
 #include "apps/commands.h"
 #include "io/results.h"
+#include "model/nearest_name.h"
 #include "model/types.h"
 #include "post/erp_spectrum.h"
 #include "post/order_spectrum.h"
@@ -280,7 +281,8 @@ int cmd_spectrum(const std::vector<std::string>& args) {
   int ic = -1;
   for (std::size_t i = 0; i < d.names.size(); ++i)
     if (d.names[i] == name) ic = static_cast<int>(i);
-  if (ic < 0) throw InputError(path + ": no channel '" + name + "'");
+  if (ic < 0)
+    throw InputError(path + ": no channel '" + name + "' (" + nearest_text(name, d.names) + ")");
   const std::string csv = vm.count("csv") ? vm["csv"].as<std::string>() : "";
   if (over_time)
     time_mode(d, ic, t, segment, max_f, bands, csv);

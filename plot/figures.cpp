@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "io/results.h"
+#include "model/nearest_name.h"
 #include "model/types.h"
 #include "plot/gnuplot.h"
 #include "plot/study_figures.h"
@@ -95,7 +96,8 @@ class Record {
   int require(const std::string& name, const std::string& why) const {
     const int i = find(name);
     if (i >= 0) return i;
-    throw InputError(path_ + ": no channel '" + name + "'" + why + "; channels here: " + listing());
+    throw InputError(path_ + ": no channel '" + name + "'" + why + "; channels here: " + listing() +
+                     " (" + nearest_text(name, d_.names) + ")");
   }
   // Exact names and globs (main*.fx), in file order, each once.
   std::vector<int> select(const std::vector<std::string>& patterns) const {
@@ -109,7 +111,8 @@ class Record {
             out.push_back(static_cast<int>(i));
         }
       if (!any)
-        throw InputError(path_ + ": no channel matches '" + p + "'; channels here: " + listing());
+        throw InputError(path_ + ": no channel matches '" + p + "'; channels here: " + listing() +
+                         " (" + nearest_text(p, d_.names) + ")");
     }
     return out;
   }

@@ -227,6 +227,7 @@ BudgetResult budget(const Options& opt_in, const BudgetOptions& bo) {
     throw InputError("--window does not apply to a budget: it measures the last cycle");
   Options opt = opt_in;
   detail::Setup s = detail::prepare(opt);
+  const detail::EmptyOutGuard no_empty_folder(s);
   if (bo.orders > 0.0 && s.info.crank_channel < 0)
     throw InputError("--orders needs a crank-angle grid (output: {grid: crank-angle})");
   BudgetResult res;

@@ -190,6 +190,20 @@ ParamSweep parse_sweep(const std::string& assignment, const std::string& option)
   for (const auto& item : split_list(assignment.substr(eq + 1), ',')) {
     if (item.empty()) throw InputError(where + ": empty value");
     const auto dots = item.find("..");
+    if (dots != std::string::npos && item.find('/', dots) != std::string::npos) {
+      // a log range runs upward (a linear one is refused by linear_range): a
+      // downward one is a slip more often than a wish
+      double a = 0.0, b = 0.0;
+      const auto end = item.find_first_of(":/", dots);
+      if (parse_double(item.substr(0, dots), a) &&
+          parse_double(
+              item.substr(dots + 2, end == std::string::npos ? std::string::npos : end - dots - 2),
+              b) &&
+          b < a)
+        throw InputError(where + ": the range " + item + " runs downward (" + number_text(a) +
+                         " to " + number_text(b) +
+                         "): write it upward, or list the values in the order wanted");
+    }
     if (dots != std::string::npos && item.find(':', dots) != std::string::npos) {
       for (auto& v : linear_range(where, item)) sw.values.push_back(v);
     } else if (dots != std::string::npos && item.find('/') != std::string::npos) {

@@ -95,6 +95,7 @@ double log_log_slope(const std::vector<double>& x, const std::vector<double>& e,
 
 ConvergenceResult convergence(const Options& opt, const CaseInput& spec) {
   Setup s = prepare(opt);
+  const EmptyOutGuard no_empty_folder(s);
   std::vector<Case> cases = expand_case(spec.spec, s.info.integrator, spec.where);
   tie_iteration_tolerance(opt, cases, s.info.integrator);
   const std::string where = spec.where.empty() ? "--case '" + spec.spec + "'" : spec.where;

@@ -6,12 +6,13 @@
 #include <cstdlib>
 #include <limits>
 
+#include "model/nearest_name.h"
 #include "study/case_grid.h"
 
 namespace evas::study {
 
-std::vector<int> select_channels(const std::vector<Channel>& channels,
-                                 const std::string& patterns) {
+std::vector<int> select_channels(const std::vector<Channel>& channels, const std::string& patterns,
+                                 const std::string& option) {
   std::vector<std::string> pats;
   if (!patterns.empty())
     for (const auto& p : split_list(patterns, ','))
@@ -34,11 +35,18 @@ std::vector<int> select_channels(const std::vector<Channel>& channels,
     if (take) out.push_back(static_cast<int>(i));
   }
   if (out.empty()) {
-    std::string names;
-    for (const auto& c : channels) names += (names.empty() ? "" : ", ") + c.name;
-    throw InputError(
-        "--channels '" + patterns + "' matches no output channel (available: " +
-        (names.empty() ? std::string("none; the scene's output lists no channels") : names) + ")");
+    std::vector<std::string> names;
+    for (const auto& c : channels) names.push_back(c.name);
+    std::string list;
+    if (names.size() <= 20)
+      for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
+    throw InputError(option + " '" + patterns + "' matches no output channel (" +
+                     (names.empty() ? std::string("none; the scene's output lists no channels")
+                      : names.size() <= 20
+                          ? "available: " + list
+                          : nearest_text(pats.empty() ? patterns : pats.front(), names) +
+                                "; evas info SCENE lists them") +
+                     ")");
   }
   return out;
 }

@@ -38,8 +38,10 @@ namespace evas::study {
 /// Indices of the channels whose names match any of the comma-separated glob
 /// patterns; an empty pattern list selects every channel except crank_angle and
 /// the constraint residuals (names ending in .g and .g_dot).
-/// Throws InputError listing the available names when nothing matches.
-std::vector<int> select_channels(const std::vector<Channel>& channels, const std::string& patterns);
+/// Throws InputError naming `option` when nothing matches: every available
+/// name when there are at most 20, else the nearest ones.
+std::vector<int> select_channels(const std::vector<Channel>& channels, const std::string& patterns,
+                                 const std::string& option = "--channels");
 
 struct Window {
   enum class Kind { All, LastCycles, Time };

@@ -222,6 +222,7 @@ StabilityResult stability(const Options& opt, const CaseInput& spec, const Stabi
   if (!(so.growth > 1)) throw InputError("--growth must be > 1");
   if (so.bisections < 0 || so.bisections > 60) throw InputError("--bisections must be in [0, 60]");
   Setup s = prepare(opt);
+  const EmptyOutGuard no_empty_folder(s);
   const std::string where = spec.where.empty() ? "--case '" + spec.spec + "'" : spec.where;
   const std::vector<Case> cases = expand_case(spec.spec, s.info.integrator, spec.where);
   if (cases.size() != 1) {

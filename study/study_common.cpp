@@ -152,12 +152,19 @@ Setup prepare(const Options& opt) {
   }
   s.out = opt.out_dir.empty() ? fs::path("out") / ("study-" + s.info.name) : fs::path(opt.out_dir);
   std::error_code ec;
+  s.created_out = !fs::exists(s.out, ec);
   fs::create_directories(s.out, ec);
   if (ec)
     throw InputError(s.out.string() + ": cannot create the output directory: " + ec.message());
   // the start state as a file of its own: evas run --initial reproduces a case
   if (!s.started.state_text.empty()) write_file_atomic(s.out / "state.yaml", s.started.state_text);
   return s;
+}
+
+EmptyOutGuard::~EmptyOutGuard() {
+  std::error_code ec;
+  if (s_.created_out && fs::is_directory(s_.out, ec) && fs::is_empty(s_.out, ec) && !ec)
+    fs::remove(s_.out, ec);
 }
 
 StudyInfo make_info(const Setup& s) {

@@ -45,7 +45,22 @@ struct Setup {
   bool window_default = false;
   ErrorMeasure measure;
   fs::path out;
-  StartedFrom started;  ///< --initial / --steady (steady_start.h)
+  StartedFrom started;       ///< --initial / --steady (steady_start.h)
+  bool created_out = false;  ///< prepare() made the output folder (it was not there)
+};
+
+/// Removes the output folder when prepare() made it and it is still empty as
+/// this goes out of scope (a study refused after prepare() leaves no empty
+/// folder behind).
+class EmptyOutGuard {
+ public:
+  explicit EmptyOutGuard(const Setup& s) : s_(s) {}
+  ~EmptyOutGuard();
+  EmptyOutGuard(const EmptyOutGuard&) = delete;
+  EmptyOutGuard& operator=(const EmptyOutGuard&) = delete;
+
+ private:
+  const Setup& s_;
 };
 
 /// Reads the scene, selects the channels, window and norm, creates the output folder.

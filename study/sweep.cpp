@@ -120,6 +120,7 @@ SweepResult sweep(const Options& opt, const SweepOptions& so) {
   std::unique_ptr<GnuplotProcess> gnuplot;
   if (opt.plot && so.point < 0) gnuplot = std::make_unique<GnuplotProcess>();
   Setup s = prepare(probe_opt);
+  const EmptyOutGuard no_empty_folder(s);
   const double setup_seconds = since(started);
 
   SweepData d;
@@ -151,7 +152,7 @@ SweepResult sweep(const Options& opt, const SweepOptions& so) {
   d.figure_channels = so.order_channels.empty() ? std::vector<int>{0} : [&] {
     std::vector<Channel> sel;
     for (std::size_t i = 0; i < s.names.size(); ++i) sel.push_back({s.names[i], s.units[i]});
-    return select_channels(sel, so.order_channels);
+    return select_channels(sel, so.order_channels, "--order-channels");
   }();
 
   // every point's scene must read and give the same channels: checked before any run
@@ -173,6 +174,11 @@ SweepResult sweep(const Options& opt, const SweepOptions& so) {
       const SceneInfo info = probe_scene(src);
       idx = channels_by_name(info, s.names);
       rows = info.times.size();
+      // the checks evas run makes on its scene, for every point (a speed in rpm
+      // where rad/s are read, a step in the wrong unit)
+      for (const auto& w : info.warnings)
+        if (std::find(s.info.warnings.begin(), s.info.warnings.end(), w) == s.info.warnings.end())
+          res.warnings.push_back(where.substr(8) + ": " + w);
     } catch (const InputError& e) {
       throw InputError(where + ": " + e.what());
     }
@@ -195,6 +201,7 @@ SweepResult sweep(const Options& opt, const SweepOptions& so) {
       res.tasks.push_back(std::move(st));
     }
   }
+  for (const auto& w : res.warnings) say(opt, "evas study sweep: warning: " + w);
   const double check_seconds = since(started) - setup_seconds;
   d.amplitude.assign(res.tasks.size(), {});
   res.info = make_info(s);

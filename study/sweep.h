@@ -67,7 +67,10 @@ struct SweepResult {
   std::vector<Case> cases;
   std::vector<SweepTask> tasks;  ///< point-major: task = point * cases + case
   std::string runner;            ///< how the tasks ran
-  int resumed = 0;               ///< tasks taken from an earlier run (--resume)
+  /// The points' plausibility warnings (Scene::warnings, as evas run gives
+  /// them), "point P (KEY=V): warning", said before any run
+  std::vector<std::string> warnings;
+  int resumed = 0;  ///< tasks taken from an earlier run (--resume)
   /// Wall time the coordinator spent on its own (setup, reading every point's
   /// scene, files, figures), not waiting for runs [s].
   double coordinator_seconds = 0.0;

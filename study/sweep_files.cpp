@@ -210,8 +210,9 @@ void write_sweep_tables(const Options& opt, SweepData& d) {
      << "\n- channels: " << res.info.channels.size() << "; order spectra over "
      << (res.info.window.rfind("the periodic cycle", 0) == 0 ? res.info.window
                                                              : "the last cycle(s) of each run")
-     << ", orders 0 to " << gnum(d.orders.back(), 4) << " in steps of 0.5\n\n"
-     << "| task | ";
+     << ", orders 0 to " << gnum(d.orders.back(), 4) << " in steps of 0.5\n";
+  for (const auto& w : res.warnings) md << "- **warning**: " << md_cell(w) << "\n";
+  md << "\n| task | ";
   for (const auto& k : res.keys) md << md_cell(k) << " | ";
   md << "case | status | mean speed [rpm] | wall [s] | steps |\n|---:|";
   for (std::size_t j = 0; j < res.keys.size(); ++j) md << "---|";

@@ -118,6 +118,7 @@ std::vector<std::string> default_work_precision_cases() {
 
 WorkPrecisionResult work_precision(const Options& opt, const std::vector<CaseInput>& specs_in) {
   Setup s = prepare(opt);
+  const EmptyOutGuard no_empty_folder(s);
   std::vector<CaseInput> specs = specs_in;
   if (specs.empty())
     for (const auto& d : default_work_precision_cases()) specs.push_back({d, ""});

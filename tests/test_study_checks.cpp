@@ -14,6 +14,7 @@
 #include <string>
 
 #include "io/text_escape.h"
+#include "model/nearest_name.h"
 #include "study/checks.h"
 
 namespace fs = std::filesystem;
@@ -269,4 +270,59 @@ TEST(StudyChecks, ProblemStabilitySearchAndBadCase) {
       code);
   EXPECT_EQ(code, 1) << text;
   EXPECT_NE(text.find("does not run on problem andrews"), std::string::npos) << text;
+}
+
+// A sweep checks what a run checks: every point's plausibility warnings (a
+// speed of 3000 rad/s, likely meant in rpm) before any run and in sweep.md;
+// a downward range is refused; a refused sweep leaves no empty folder; the
+// option is named right and the nearest channel names suggested.
+TEST(StudyChecks, SweepChecksWhatARunChecks) {
+  const std::string demo = std::string(EVAS_SOURCE_DIR) + "/scenes/demo.yaml";
+  const fs::path dir = kOut / "sweep";
+  fs::remove_all(dir);
+  int code = 0;
+  std::string text = run_evas("study sweep " + demo +
+                                  " --t-end 0.002 --sweep 'shaft.lof.speed=100,3000' --no-plot "
+                                  "--jobs 1 --out " +
+                                  dir.string(),
+                              code);
+  EXPECT_EQ(code, 0) << text;
+  EXPECT_NE(text.find("evas study sweep: warning: point 1 (shaft.lof.speed=3000)"),
+            std::string::npos)
+      << text;
+  EXPECT_EQ(text.find("point 0 (shaft.lof.speed=100)"), std::string::npos) << text;
+  EXPECT_NE(read(dir / "sweep.md").find("- **warning**: point 1 (shaft.lof.speed=3000)"),
+            std::string::npos);
+  const fs::path refused = kOut / "sweep_refused";
+  fs::remove_all(refused);
+  text = run_evas(
+      "study sweep " + demo + " --sweep 'shaft.lof.speed=300..100/3' --out " + refused.string(),
+      code);
+  EXPECT_EQ(code, 1) << text;
+  EXPECT_NE(text.find("the range 300..100/3 runs downward"), std::string::npos) << text;
+  EXPECT_FALSE(fs::exists(refused));
+  text = run_evas("study sweep " + demo +
+                      " --sweep 'shaft.lof.speed=100' --order-channels 'frame_right.VZ' --out " +
+                      refused.string(),
+                  code);
+  EXPECT_EQ(code, 1) << text;
+  EXPECT_NE(text.find("--order-channels 'frame_right.VZ' matches no output channel (nearest: "
+                      "frame_right.vz"),
+            std::string::npos)
+      << text;
+  EXPECT_FALSE(fs::exists(refused));
+}
+
+// Levenshtein's distance (Levenshtein 1966): kitten -> sitting is 3 edits;
+// letters compare without case; the nearest names come first.
+TEST(StudyChecks, NearestNamesForMessages) {
+  EXPECT_EQ(edit_distance("kitten", "sitting"), 3u);
+  EXPECT_EQ(edit_distance("main3.Fy", "main3.fy"), 0u);
+  EXPECT_EQ(edit_distance("", "abc"), 3u);
+  const std::vector<std::string> names = {"crank_angle", "main1.fy", "main3.fx", "main3.fy"};
+  EXPECT_EQ(nearest_names("main3.Fy", names, 2),
+            (std::vector<std::string>{"main3.fy", "main1.fy"}));  // a tie: names order
+  EXPECT_EQ(nearest_names("main3*.fy", names, 1), (std::vector<std::string>{"main3.fy"}));
+  EXPECT_EQ(nearest_text("mian3.fy", names, 2), "nearest: main3.fy, main1.fy; 4 in all");
+  EXPECT_EQ(nearest_text("x", {}), "");
 }
