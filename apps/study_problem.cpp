@@ -85,7 +85,7 @@ std::vector<ProblemCase> expand(const problems::LibraryProblem& lp,
     for (auto& c : study::expand_case(spec, base, where)) {
       ProblemCase pc;
       pc.c = std::move(c);
-      pc.c.settings = problem_case_settings(lp, pc.c.settings, spec, ratio);
+      pc.c.settings = problem_case_settings(pc.c.settings, spec, ratio);
       // the label names rtol always (settings_label leaves out a default value)
       pc.c.label = settings_label(pc.c.settings);
       if (pc.c.label.find(" rtol=") == std::string::npos) {
@@ -334,9 +334,8 @@ std::string formulation_used(const problems::LibraryProblem& lp, const Integrato
   return "default (" + s.name + "'s)";
 }
 
-IntegratorSettings problem_case_settings(const problems::LibraryProblem& lp, IntegratorSettings s,
-                                         const std::string& spec, double atol_ratio) {
-  (void)lp;
+IntegratorSettings problem_case_settings(IntegratorSettings s, const std::string& spec,
+                                         double atol_ratio) {
   if (spec.find("atol=") == std::string::npos) s.atol = s.rtol * atol_ratio;
   return s;
 }

@@ -30,8 +30,8 @@ std::string formulation_used(const problems::LibraryProblem& lp, const Integrato
 /// The case settings of a problem study: the spec over the base of `evas
 /// problem` (rtol 1e-8, first step t_end / 2000), atol = rtol * atol_ratio
 /// unless the spec sets atol.
-IntegratorSettings problem_case_settings(const problems::LibraryProblem& lp, IntegratorSettings s,
-                                         const std::string& spec, double atol_ratio);
+IntegratorSettings problem_case_settings(IntegratorSettings s, const std::string& spec,
+                                         double atol_ratio);
 
 /// The studies on problem `target` ("problem:NAME") into `out` ("" = the
 /// default folder), their checks into `report` (written by the caller);
