@@ -152,7 +152,13 @@ SweepResult sweep(const Options& opt, const SweepOptions& so) {
   d.figure_channels = so.order_channels.empty() ? std::vector<int>{0} : [&] {
     std::vector<Channel> sel;
     for (std::size_t i = 0; i < s.names.size(); ++i) sel.push_back({s.names[i], s.units[i]});
-    return select_channels(sel, so.order_channels, "--order-channels");
+    // in the order the patterns are given (the waterfall draws the first asked
+    // for, not the first in file order), each channel once
+    std::vector<int> out;
+    for (const auto& p : split_list(so.order_channels, ','))
+      for (int c : p.empty() ? std::vector<int>{} : select_channels(sel, p, "--order-channels"))
+        if (std::find(out.begin(), out.end(), c) == out.end()) out.push_back(c);
+    return out;
   }();
 
   // every point's scene must read and give the same channels: checked before any run

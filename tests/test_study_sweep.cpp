@@ -416,8 +416,11 @@ TEST(StudySweep, PlotDrawsTheSweepFiguresAgainFromTheFile) {
   TempFolder tmp;
   std::vector<std::string> args = kSweep;
   args.pop_back();  // draw the figures
-  const Outcome o =
-      run_evas(with(args, {"--out", (tmp.path() / "s").string()}), tmp.path() / "s.log");
+  // the figure channels in the order asked for: main2.fy first, though main1.fx
+  // comes first in the file
+  const Outcome o = run_evas(
+      with(args, {"--order-channels", "main2.fy,main1.fx", "--out", (tmp.path() / "s").string()}),
+      tmp.path() / "s.log");
   ASSERT_EQ(o.code, 0) << o.log;
   const fs::path sweep = tmp.path() / "s" / "sweep.h5";
   auto text = [](const fs::path& p) {
@@ -430,9 +433,9 @@ TEST(StudySweep, PlotDrawsTheSweepFiguresAgainFromTheFile) {
     return t;
   };
   for (const auto& [kind, extra] : std::vector<std::pair<std::string, std::vector<std::string>>>{
-           {"waterfall", {"--channel", "main1.fx"}},
+           {"waterfall", {"--channel", "main2.fy"}},
            {"campbell", {}},
-           {"order-cuts", {"--channel", "main1.fx"}}}) {
+           {"order-cuts", {"--channel", "main2.fy", "--channel", "main1.fx"}}}) {
     SCOPED_TRACE(kind);
     std::vector<std::string> p = {"plot", kind, sweep.string(), "--out",
                                   (tmp.path() / (kind + ".png")).string()};
@@ -445,6 +448,7 @@ TEST(StudySweep, PlotDrawsTheSweepFiguresAgainFromTheFile) {
     EXPECT_EQ(text(tmp.path() / (kind + ".gp")), drawn);
     EXPECT_TRUE(fs::exists(tmp.path() / (kind + ".png")));
   }
+  EXPECT_NE(text(tmp.path() / "s" / "waterfall.gp").find("waterfall: main2.fy"), std::string::npos);
   const Outcome bad_order = run_evas({"plot", "order-cuts", sweep.string(), "--order", "0.3",
                                       "--out", (tmp.path() / "x.png").string()},
                                      tmp.path() / "b.log");
