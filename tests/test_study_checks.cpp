@@ -5,6 +5,7 @@
 // beside its published solvers, and --expect-error on a scene.
 #include <gtest/gtest.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <cstdlib>
@@ -34,7 +35,8 @@ std::string read(const fs::path& p) {
 // Runs evas with `args`; the exit code and everything it printed.
 std::string run_evas(const std::string& args, int& code) {
   fs::create_directories(kOut);
-  const fs::path log = kOut / "log.txt";
+  // one log per process: CTest runs the tests of this file in parallel processes
+  const fs::path log = kOut / ("log_" + std::to_string(getpid()) + ".txt");
   code = std::system(
       (std::string(EVAS_BINARY_DIR) + "/evas " + args + " > " + log.string() + " 2>&1").c_str());
   code = WIFEXITED(code) ? WEXITSTATUS(code) : -1;
