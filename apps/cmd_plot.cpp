@@ -24,9 +24,9 @@ int cmd_plot(const std::vector<std::string>& args) {
       kinds + "\noptions");
   opts.add_options()("help,h", "show this help")(
       "channel", po::value<std::vector<std::string>>(&o.channels),
-      "channel name or glob (channels: repeatable; order, spectrum: one; erp: the surface "
-      "output's name)")("element", po::value<std::string>(&o.element),
-                        "journal bearing (polar, orbit, film)")(
+      "channel name or glob (channels, order-track: repeatable; order, spectrum: one; erp: "
+      "the surface output's name)")("element", po::value<std::string>(&o.element),
+                                    "journal bearing (polar, orbit, film)")(
       "out", po::value<std::string>(), "the figure: a file name ending in .png or .svg")(
       "cycles", po::value<int>(&o.cycles),
       "the last N whole cycles of a crank-angle grid (default 1, as evas spectrum and evas "
@@ -41,8 +41,9 @@ int cmd_plot(const std::vector<std::string>& args) {
       "to", po::value<double>(&o.spectrum.t1), "spectrum: last time used [s]")(
       "max-frequency", po::value<double>(&o.max_frequency), "spectrum: highest frequency [Hz]")(
       "order", po::value<std::vector<double>>(&o.orders),
-      "order-cuts: an engine order to draw (repeatable; default 1, 2 and 4)")(
-      "title", po::value<std::string>(&o.title), "the figure's title (default: the kind's own)");
+      "order-cuts, order-track: an engine order to draw (repeatable; default 1, 2 and 4; "
+      "order-track 1, 2, 4 and 6)")("title", po::value<std::string>(&o.title),
+                                    "the figure's title (default: the kind's own)");
   po::variables_map vm;
   if (parse_args(args, opts, {"kind", "results"}, vm)) return 0;
   if (!vm.count("kind") || !vm.count("results") || !vm.count("out")) {

@@ -7,6 +7,7 @@
 #include <fstream>
 #include <iomanip>
 #include <iostream>
+#include <optional>
 #include <sstream>
 
 #include "apps/commands.h"
@@ -15,6 +16,7 @@
 #include "model/types.h"
 #include "post/erp_spectrum.h"
 #include "post/order_spectrum.h"
+#include "post/radiation.h"
 #include "post/time_spectrum.h"
 
 namespace evas::cli {
@@ -86,10 +88,17 @@ std::string level_text(double p) {
   return os.str();
 }
 
-// --erp NAME: the ERP spectrum of surface output NAME from its components NAME.c<k>.
+// "" or ",X" for a level of power p (dB), for the CSV.
+std::string level_field(double p) { return "," + level_text(p); }
+
+// p times the A weighting at f.
+double a_weighted(double p, double f) { return p * std::pow(10.0, a_weighting_db(f) / 10.0); }
+
+// --erp NAME: the ERP spectrum of surface output NAME from its components NAME.c<k>,
+// and of its elastic part from NAME.e<k> where the file has them.
 void erp_mode(const ResultsData& d, const std::string& path, const std::string& name,
               const TimeSpectrumOptions& o, double segment_s, double max_f,
-              const std::string& bands, const std::string& csv) {
+              const std::string& bands, const std::string& csv, const RadiationModel* rad) {
   const std::vector<std::vector<double>> comps = erp_components(d.names, d.values, name);
   if (comps.empty()) {
     std::string known;
@@ -103,39 +112,103 @@ void erp_mode(const ResultsData& d, const std::string& path, const std::string& 
                                     : known) +
                      ")");
   }
-  std::vector<ErpBand> bl;
-  const ErpSpectrum s =
-      erp_spectrum(d.time, comps, with_segment(d, o, segment_s), bands.empty() ? nullptr : &bl);
+  const std::vector<std::vector<double>> ecomps = erp_components(d.names, d.values, name, "e");
+  const bool el = !ecomps.empty();
+  if (rad && !el)
+    throw InputError(
+        path +
+        ": --radiation weights the elastic part of the ERP, and the file has "
+        "no elastic components " +
+        name + ".e0, ... (a file from before the elastic part was written: run the scene again)");
+  const TimeSpectrumOptions opt = with_segment(d, o, segment_s);
+  std::vector<ErpBand> bl, ebl;
+  const ErpSpectrum s = erp_spectrum(d.time, comps, opt, bands.empty() ? nullptr : &bl);
+  ErpSpectrum e;
+  if (el) e = erp_spectrum(d.time, ecomps, opt, bands.empty() ? nullptr : &ebl);
   std::cout << "equivalent radiated power of " << name << ", t = " << s.t0 << " .. " << s.t1
             << " s, " << o.window << " window, " << s.segments << " segment(s) of " << s.samples
             << " samples, df = " << s.df << " Hz; mean ERP " << s.mean << " W ("
             << level_text(s.mean) << " dB re 1 pW)\n";
+  // the totals of the weighted elastic part, over the bins or bands listed
+  double e_a = 0.0, r_w = 0.0, r_a = 0.0;
+  if (el) {
+    std::cout << "  elastic part (the body's deformation; the rigid-body motion left out): mean "
+              << e.mean << " W (" << level_text(e.mean) << " dB re 1 pW)\n";
+    if (rad)
+      std::cout << "  radiation efficiency sigma(f) of a " << rad->describe()
+                << " applied to the elastic part: radiated = sigma * ERP_elastic\n";
+  }
   std::ofstream f;
   if (!csv.empty()) f = open_csv(csv);
+  const std::string el_head = el ? ",erp_elastic[W],level_elastic[dB re 1 pW],"
+                                   "level_elastic_A[dB(A) re 1 pW]"
+                                 : "";
+  const std::string rad_head =
+      rad ? ",sigma,radiated[W],level_radiated[dB re 1 pW],level_radiated_A[dB(A) re 1 pW]" : "";
+  auto el_cols = [&](double pe, double fc, bool print) {
+    if (!el) return;
+    const double pa = a_weighted(pe, fc);
+    e_a += pa;
+    if (print)
+      std::cout << std::setw(13) << std::setprecision(6) << pe << std::setw(10) << level_text(pe)
+                << std::setw(10) << level_text(pa);
+    if (f) f << "," << pe << level_field(pe) << level_field(pa);
+    if (!rad) return;
+    const double sg = rad->sigma(fc), pr = sg * pe, pra = a_weighted(pr, fc);
+    r_w += pr;
+    r_a += pra;
+    if (print)
+      std::cout << std::setw(10) << std::setprecision(4) << sg << std::setw(13)
+                << std::setprecision(6) << pr << std::setw(10) << level_text(pr) << std::setw(10)
+                << level_text(pra);
+    if (f) f << "," << sg << "," << pr << level_field(pr) << level_field(pra);
+  };
+  const std::string el_print = el ? "   elastic [W]  level     dB(A)" : "";
+  const std::string rad_print = rad ? "     sigma  radiated [W]  level     dB(A)" : "";
   if (!bands.empty()) {
-    std::cout << "  third-octave band [Hz]            ERP [W]   level [dB]   bins\n";
-    if (f) f << "centre[Hz],lower[Hz],upper[Hz],erp[W],level[dB re 1 pW],bins\n";
-    for (const ErpBand& b : bl) {
+    std::cout << "  third-octave band [Hz]            ERP [W]   level [dB]   bins" << el_print
+              << rad_print << "\n";
+    if (f)
+      f << "centre[Hz],lower[Hz],upper[Hz],erp[W],level[dB re 1 pW],bins" << el_head << rad_head
+        << "\n";
+    for (std::size_t j = 0; j < bl.size(); ++j) {
+      const ErpBand& b = bl[j];
       std::cout << std::setw(10) << std::setprecision(5) << b.centre << "  (" << std::setw(8)
                 << b.lower << " .. " << std::setw(8) << b.upper << ")  " << std::setw(13)
                 << std::setprecision(6) << b.power << std::setw(12) << level_text(b.power)
-                << std::setw(7) << b.bins << "\n";
+                << std::setw(7) << b.bins;
       if (f)
         f << b.centre << "," << b.lower << "," << b.upper << "," << b.power << ","
-          << level_text(b.power) << "," << b.bins << "\n";
+          << level_text(b.power) << "," << b.bins;
+      el_cols(j < ebl.size() ? ebl[j].power : 0.0, b.centre, true);
+      std::cout << "\n";
+      if (f) f << "\n";
     }
   } else {
-    std::cout << "  frequency [Hz]   ERP [W]   level [dB]   density [W/Hz]\n";
-    if (f) f << "frequency[Hz],erp[W],level[dB re 1 pW],density[W/Hz]\n";
+    std::cout << "  frequency [Hz]   ERP [W]   level [dB]   density [W/Hz]" << el_print << rad_print
+              << "\n";
+    if (f)
+      f << "frequency[Hz],erp[W],level[dB re 1 pW],density[W/Hz]" << el_head << rad_head << "\n";
     for (std::size_t k = 0; k < s.frequency.size(); ++k) {
       if (max_f > 0.0 && s.frequency[k] > max_f) break;
       std::cout << std::setw(16) << std::setprecision(6) << s.frequency[k] << std::setw(12)
                 << s.power[k] << std::setw(10) << level_text(s.power[k]) << std::setw(16)
-                << s.density[k] << "\n";
+                << s.density[k];
       if (f)
         f << s.frequency[k] << "," << s.power[k] << "," << level_text(s.power[k]) << ","
-          << s.density[k] << "\n";
+          << s.density[k];
+      el_cols(k < e.power.size() ? e.power[k] : 0.0, s.frequency[k], true);
+      std::cout << "\n";
+      if (f) f << "\n";
     }
+  }
+  if (el) {
+    std::cout << "  elastic part, sum of the " << (bands.empty() ? "bins" : "bands")
+              << " listed, A-weighted: " << e_a << " W (" << level_text(e_a) << " dB(A) re 1 pW)\n";
+    if (rad)
+      std::cout << "  radiated (sigma * elastic), sum of the " << (bands.empty() ? "bins" : "bands")
+                << " listed: " << r_w << " W (" << level_text(r_w) << " dB re 1 pW), A-weighted "
+                << r_a << " W (" << level_text(r_a) << " dB(A) re 1 pW)\n";
   }
 }
 
@@ -210,7 +283,11 @@ int cmd_spectrum(const std::vector<std::string>& args) {
       "With --erp NAME (a spectrum over time): the equivalent radiated power of the\n"
       "surface output NAME ({surface: SET, ...}), from its components NAME.c<k>: per bin\n"
       "the power [W] of a harmonic there and the density [W/Hz], or per third-octave\n"
-      "band the power [W]; levels in dB re 1 pW.\n\n"
+      "band the power [W]; levels in dB re 1 pW. Beside it the elastic part (NAME.e<k>:\n"
+      "the body's deformation, its rigid-body motion, e.g. rocking on the mounts, left\n"
+      "out) unweighted and A-weighted (IEC 61672-1), and with --radiation piston:R the\n"
+      "radiation efficiency sigma(f) of a baffled piston of radius R [m] and the\n"
+      "radiated power sigma * ERP_elastic.\n\n"
       "options");
   opts.add_options()("help,h", "show this help")("channel", po::value<std::string>(),
                                                  "channel name, e.g. main1.fy")(
@@ -231,6 +308,9 @@ int cmd_spectrum(const std::vector<std::string>& args) {
       "--time: overlap of the segments, in [0, 1)")("max-frequency", po::value<double>(&max_f),
                                                     "--time: highest frequency listed [Hz]")(
       "bands", po::value<std::string>(&bands), "--time: third-octave (band RMS values)")(
+      "radiation", po::value<std::string>(),
+      "--erp: radiation efficiency applied to the elastic ERP: piston:RADIUS (baffled "
+      "circular piston, RADIUS in m; sqrt(area / pi) of the surface)")(
       "csv", po::value<std::string>(),
       "write the table to this file (order,amplitude,phase or frequency,amplitude,psd "
       "or the bands)");
@@ -267,13 +347,18 @@ int cmd_spectrum(const std::vector<std::string>& args) {
       throw InputError("--window '" + t.window +
                        "': the windows known are rectangular, hann, flattop");
   }
+  if (vm.count("radiation") && !vm.count("erp"))
+    throw InputError("--radiation applies to --erp NAME (the radiated power of a surface)");
+  std::optional<RadiationModel> rad;
+  if (vm.count("radiation"))
+    rad = parse_radiation_model(vm["radiation"].as<std::string>(), "--radiation");
   if (vm.count("bands") && bands != "third-octave")
     throw InputError("--bands '" + bands + "': the bands known are third-octave");
   const std::string path = vm["results"].as<std::string>();
   if (vm.count("erp")) {
     const ResultsData d = read_results(path);
     erp_mode(d, path, vm["erp"].as<std::string>(), t, segment, max_f, bands,
-             vm.count("csv") ? vm["csv"].as<std::string>() : "");
+             vm.count("csv") ? vm["csv"].as<std::string>() : "", rad ? &*rad : nullptr);
     return 0;
   }
   const std::string name = vm["channel"].as<std::string>();

@@ -100,7 +100,7 @@ const char* kGrid =
     "Example: --case \"ida rtol=1e-3..1e-7/5\" --case \"generalized-alpha step=2e-5,1e-5\"\n";
 
 // Options of every sub-command.
-void add_common(po::options_description& o) {
+void add_common(po::options_description& o, bool errors = true) {
   o.add_options()("help,h", "show this help")(
       "help-settings", "list every integrator setting (the KEYs of a case spec)")(
       "param,p", po::value<std::vector<std::string>>()->composing(),
@@ -112,6 +112,22 @@ void add_common(po::options_description& o) {
       "channels", po::value<std::string>(),
       "comma-separated globs over the output channel names, e.g. 'main*.fx,main*.fy' "
       "(default: every channel except crank_angle)")(
+      "out", po::value<std::string>(), "output directory (default out/study-<scene name>)")(
+      "jobs,j", po::value<int>(),
+      "runs at once, each in a worker process of its own (one thread each); default: the "
+      "number of cores for sweep, else 1 (work-precision and convergence measure wall "
+      "times; stability runs one search per --sweep value at once). Under mpirun the ranks "
+      "are the workers (docs/study.md)")(
+      "max-wall", po::value<double>(),
+      "wall-clock limit of one case or sweep task (with --repeats: of all its runs) [s]: one "
+      "that takes longer fails with 'timed out' and the study goes on")(
+      "initial", po::value<std::string>(),
+      "every run (the reference's too) starts from the state in FILE (evas periodic's "
+      "DIR/state.yaml) in place of the scene's initial state")(
+      "no-plot", "do not run gnuplot (the .gp script is still written)")("quiet,q",
+                                                                         "no progress lines");
+  if (!errors) return;  // a sweep measures no error: no reference, window or norm
+  o.add_options()(
       "window", po::value<std::string>(),
       "output times the error is taken over: all | last-cycles=N (crank-angle grid: the "
       "last N x 720 degrees) | T0:T1 [s] (default: last-cycles=1 on a crank-angle grid, "
@@ -133,26 +149,12 @@ void add_common(po::options_description& o) {
       "reference-file", po::value<std::string>(),
       "compare against this results file (evas run) instead of a reference run; channels "
       "are matched by name and times within 1e-9 relative")(
-      "out", po::value<std::string>(), "output directory (default out/study-<scene name>)")(
-      "jobs,j", po::value<int>(),
-      "runs at once, each in a worker process of its own (one thread each); default: the "
-      "number of cores for sweep, else 1 (work-precision and convergence measure wall "
-      "times; stability runs one search per --sweep value at once). Under mpirun the ranks "
-      "are the workers (docs/study.md)")(
-      "max-wall", po::value<double>(),
-      "wall-clock limit of one case or sweep task (with --repeats: of all its runs) [s]: one "
-      "that takes longer fails with 'timed out' and the study goes on")(
-      "initial", po::value<std::string>(),
-      "every run (the reference's too) starts from the state in FILE (evas periodic's "
-      "DIR/state.yaml) in place of the scene's initial state")(
       "steady",
       "every run is one period from the scene's periodic state (found first with evas "
       "periodic's projected method and the scene's own integrator, or --initial FILE's): "
       "the error is the integration error on the steady cycle, without the start-up")(
       "steady-tol", po::value<double>()->default_value(3e-4, "3e-4"),
-      "with --steady: the periodicity defect of the state found")(
-      "no-plot", "do not run gnuplot (the .gp script is still written)")("quiet,q",
-                                                                         "no progress lines");
+      "with --steady: the periodicity defect of the state found");
 }
 
 void add_cases(po::options_description& o) {
@@ -176,26 +178,26 @@ study::Options common_options(const po::variables_map& vm, const std::string& su
   }
   if (vm.count("channels")) o.channels = vm["channels"].as<std::string>();
   if (vm.count("window")) o.window = vm["window"].as<std::string>();
-  o.norm = vm["norm"].as<std::string>();
-  o.reference = vm["reference"].as<std::string>();
+  if (vm.count("norm")) o.norm = vm["norm"].as<std::string>();
+  if (vm.count("reference")) o.reference = vm["reference"].as<std::string>();
+  const bool reference_given = vm.count("reference") && !vm["reference"].defaulted();
   if (vm.count("reference-expr")) {
     o.reference_exprs = vm["reference-expr"].as<std::vector<std::string>>();
-    if (!vm["reference"].defaulted() || vm.count("reference-file"))
+    if (reference_given || vm.count("reference-file"))
       throw InputError("give one reference: --reference, --reference-file or --reference-expr");
     if (sub == "stability" || sub == "sweep" || sub == "budget")
       throw InputError("--reference-expr applies to work-precision and convergence");
   }
   if (vm.count("reference-file")) {
     o.reference_file = vm["reference-file"].as<std::string>();
-    if (!vm["reference"].defaulted())
-      throw InputError("give --reference or --reference-file, not both");
+    if (reference_given) throw InputError("give --reference or --reference-file, not both");
   }
   if (vm.count("repeats")) o.repeats = vm["repeats"].as<int>();
   if (vm.count("out")) o.out_dir = vm["out"].as<std::string>();
   o.plot = !vm.count("no-plot");
   if (vm.count("initial")) o.start.initial_file = vm["initial"].as<std::string>();
   o.start.steady = vm.count("steady") > 0;
-  o.start.tol = vm["steady-tol"].as<double>();
+  if (vm.count("steady-tol")) o.start.tol = vm["steady-tol"].as<double>();
   if (o.start.steady && sub == "sweep")
     throw InputError("--steady: a sweep's points are steady cycles with --periodic");
   if (!vm.count("quiet")) o.log = &std::cerr;
@@ -533,7 +535,16 @@ int sweep(const std::vector<std::string>& args) {
       "with --periodic: every point's search from the scene's initial state, not from the "
       "periodic state of the point before it");
   add_cases(opts);
-  add_common(opts);
+  add_common(opts, false);
+  // the options of the error-measuring studies, which a sweep's help leaves out:
+  // said by name rather than as unknown
+  for (const std::string& a : args)
+    for (const char* opt : {"--window", "--norm", "--reference", "--reference-expr",
+                            "--reference-file", "--steady", "--steady-tol"})
+      if (a == opt || a.rfind(std::string(opt) + "=", 0) == 0)
+        throw InputError(std::string(opt) +
+                         " does not apply to a sweep (it measures no error; --periodic makes "
+                         "every point its steady cycle)");
   po::variables_map vm;
   if (parse_or_help(args, opts, vm)) return 0;
   const study::Options o = common_options(vm, "sweep");
@@ -558,6 +569,13 @@ int sweep(const std::vector<std::string>& args) {
   SignalGuard guard;
   const auto res = study::sweep(o, so);
   if (so.point < 0) std::cout << read_text(res.info.out_dir + "/sweep.md");
+  if (res.info.interrupted) {
+    std::size_t done = 0;
+    for (const auto& t : res.tasks) done += t.result.status != study::CaseStatus::not_run;
+    std::cerr << "evas study sweep: interrupted after " << done << " of " << res.tasks.size()
+              << " tasks; they are kept in " << res.info.out_dir
+              << "/points: run the same command with --resume to run the rest\n";
+  }
   return finish(res.info, vm.count("quiet") > 0);
 }
 

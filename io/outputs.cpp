@@ -148,8 +148,12 @@ OutputSet::OutputSet(const OutputSpec& spec, System& system, double t_start, dou
         channels_.push_back({req.name + ".vn_mean", "m/s"});
         channels_.push_back({req.name + ".vn_rms", "m/s"});
         channels_.push_back({req.name + ".erp", "W"});
+        channels_.push_back({req.name + ".erp_elastic", "W"});
+        channels_.push_back({req.name + ".erp_rigid", "W"});
         for (int k = 0; k < sr.components(); ++k)
           channels_.push_back({req.name + ".c" + std::to_string(k), "W^0.5"});
+        for (int k = 0; k < sr.elastic_components(); ++k)
+          channels_.push_back({req.name + ".e" + std::to_string(k), "W^0.5"});
         if (req.per_node)
           for (long id : req.surface->nodes)
             channels_.push_back({req.name + ".vn_" + std::to_string(id), "m/s"});

@@ -11,8 +11,10 @@
 //                  marker's rigid fit), N.twist = angle_b - angle_a [rad], and
 //                  N.rate_a, N.rate_b, N.twist_rate [rad/s] the same with v
 //   {surface: S, body: B, name: N}  normal velocity and ERP of node set S of
-//                  body B (model/surface.h): N.vn_mean, N.vn_rms [m/s], N.erp
-//                  [W], N.c<k> [W^0.5] (ERP = sum c_k^2), with per_node
+//                  body B (model/surface.h): N.vn_mean, N.vn_rms [m/s], N.erp,
+//                  N.erp_elastic, N.erp_rigid [W], components N.c<k> [W^0.5]
+//                  (ERP = sum c_k^2) and N.e<k> (ERP_elastic = sum e_k^2), with
+//                  per_node
 //                  N.vn_<node id> [m/s]
 // On the crank-angle grid a first channel "crank_angle" [deg] holds the LOF
 // spin angle of the crank body.

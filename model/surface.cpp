@@ -34,6 +34,27 @@ void SurfaceSet::validate(const std::string& who) const {
   if (!(area.sum() > 0.0)) throw InputError(who + ": the surface set's areas sum to 0");
 }
 
+namespace {
+
+// Rows sqrt(rho c lambda_k) e_k^T of G = B^T diag(area) B = E diag(lambda) E^T,
+// the eigenvalues above 1e-12 of the largest (none for G = 0).
+Mat components_of(const Mat& B, const Vec& area, double rho_c) {
+  const Mat G = B.transpose() * area.asDiagonal() * B;
+  Eigen::SelfAdjointEigenSolver<Mat> eig(G);
+  const Vec& lambda = eig.eigenvalues();  // ascending
+  const double top = lambda.size() ? lambda[lambda.size() - 1] : 0.0;
+  std::vector<Eigen::Index> keep;
+  for (Eigen::Index k = lambda.size() - 1; k >= 0; --k)
+    if (top > 0.0 && lambda[k] > 1e-12 * top) keep.push_back(k);
+  Mat W(static_cast<Eigen::Index>(keep.size()), G.cols());
+  for (std::size_t j = 0; j < keep.size(); ++j)
+    W.row(static_cast<Eigen::Index>(j)) =
+        std::sqrt(rho_c * lambda[keep[j]]) * eig.eigenvectors().col(keep[j]).transpose();
+  return W;
+}
+
+}  // namespace
+
 SurfaceRadiation::SurfaceRadiation(const ModalBody& body, const SurfaceSet& set, double rho_c,
                                    bool per_node, const std::string& who)
     : rho_c_(rho_c), per_node_(per_node) {
@@ -53,20 +74,22 @@ SurfaceRadiation::SurfaceRadiation(const ModalBody& body, const SurfaceSet& set,
   }
   area_ = set.total_area();
   a_ = B.transpose() * set.area / area_;
-  const Mat G = B.transpose() * set.area.asDiagonal() * B;
-  Eigen::SelfAdjointEigenSolver<Mat> eig(G);
-  const Vec& lambda = eig.eigenvalues();  // ascending
-  const double top = lambda.size() ? lambda[lambda.size() - 1] : 0.0;
-  std::vector<int> keep;
-  for (int k = K - 1; k >= 0; --k)
-    if (lambda[k] > 1e-12 * top) keep.push_back(k);
-  W_.resize(static_cast<Eigen::Index>(keep.size()), K);
-  for (std::size_t j = 0; j < keep.size(); ++j)
-    W_.row(static_cast<Eigen::Index>(j)) =
-        std::sqrt(rho_c * lambda[keep[j]]) * eig.eigenvectors().col(keep[j]).transpose();
+  rigid_.assign(static_cast<std::size_t>(K), 0);
+  for (int k = 0; k < 6; ++k) rigid_[static_cast<std::size_t>(k)] = 1;
+  for (int k = 0; k < n; ++k)
+    if (static_cast<std::size_t>(k) < body.kinds.size() &&
+        body.kinds[static_cast<std::size_t>(k)] == ModeKind::Rigid)
+      rigid_[static_cast<std::size_t>(6 + k)] = 1;
+  W_ = components_of(B, set.area, rho_c);
+  Mat Be = B, Br = B;
+  for (int k = 0; k < K; ++k) (rigid_[static_cast<std::size_t>(k)] ? Be : Br).col(k).setZero();
+  We_ = components_of(Be, set.area, rho_c);
+  Wr_ = components_of(Br, set.area, rho_c);
   if (per_node) B_ = std::move(B);
   u_.resize(K);
   c_.resize(W_.rows());
+  ce_.resize(We_.rows());
+  cr_.resize(Wr_.rows());
 }
 
 void SurfaceRadiation::evaluate(const LofState& lof, const double* qdot, double* out) const {
@@ -75,13 +98,19 @@ void SurfaceRadiation::evaluate(const LofState& lof, const double* qdot, double*
   u_.segment<3>(3) = lof.R_GL.transpose() * lof.w_GL_G;
   u_.tail(K - 6) = Eigen::Map<const Vec>(qdot, K - 6);
   c_.noalias() = W_ * u_;
+  ce_.noalias() = We_ * u_;  // We_, Wr_ have zero columns where the other part is
+  cr_.noalias() = Wr_ * u_;
   const double erp = c_.squaredNorm();
   out[0] = a_.dot(u_);
   out[1] = std::sqrt(erp / (rho_c_ * area_));
   out[2] = erp;
-  for (Eigen::Index k = 0; k < c_.size(); ++k) out[3 + k] = c_[k];
+  out[3] = ce_.squaredNorm();
+  out[4] = cr_.squaredNorm();
+  double* o = out + 5;
+  for (Eigen::Index k = 0; k < c_.size(); ++k) *o++ = c_[k];
+  for (Eigen::Index k = 0; k < ce_.size(); ++k) *o++ = ce_[k];
   if (per_node_) {
-    Eigen::Map<Vec> vn(out + 3 + c_.size(), B_.rows());
+    Eigen::Map<Vec> vn(o, B_.rows());
     vn.noalias() = B_ * u_;
   }
 }

@@ -23,6 +23,19 @@
 // G = E diag(lambda) E^T, the components c_k = sqrt(rho c lambda_k) e_k^T u
 // [W^0.5] give ERP = sum_k c_k^2 and, being linear in u, the ERP spectrum
 // ERP(f) = sum_k (power of c_k at f) (post/erp_spectrum.h).
+//
+// Rigid and elastic parts. u splits into the body's rigid-body velocity u_r
+// (the LOF's v_o and w_L, and the coordinates of the body's explicit rigid
+// modes, ModeKind::Rigid) and its elastic velocity u_e (every other modal
+// coordinate), u = u_r + u_e. ERP_rigid = rho c u_r^T G u_r is what the
+// surface would "radiate" moving as a rigid body (an engine rocking on its
+// mounts), ERP_elastic = rho c u_e^T G u_e what its deformation radiates; the
+// two do not sum to ERP (the cross term 2 rho c u_r^T G u_e, which averages out
+// over a cycle only when the two parts are uncorrelated). A rigid body moving
+// on its mounts has u_e = 0 and so no elastic ERP. The elastic part has its
+// own components e_k = sqrt(rho c mu_k) f_k^T u (G_e = sum_i A_i b_e,i b_e,i^T
+// = F diag(mu) F^T, b_e,i = b_i with the rigid entries zeroed), so that its
+// spectrum is formed as the total's is.
 #pragma once
 
 #include <string>
@@ -58,23 +71,29 @@ class SurfaceRadiation {
 
   /// Number of ERP components c_k (the rank of G kept).
   int components() const { return static_cast<int>(W_.rows()); }
-  int values() const { return 3 + components() + (per_node_ ? nodes() : 0); }
+  /// Number of elastic ERP components e_k (the rank of G_e kept).
+  int elastic_components() const { return static_cast<int>(We_.rows()); }
+  int values() const { return 5 + components() + elastic_components() + (per_node_ ? nodes() : 0); }
   int nodes() const { return static_cast<int>(B_.rows()); }
   double rho_c() const { return rho_c_; }
   double total_area() const { return area_; }
 
-  /// out: vn_mean [m/s], vn_rms [m/s], erp [W], c_0 .. c_{K'-1} [W^0.5], then
-  /// (per_node) v_n of each node [m/s], from the LOF state and the body's
-  /// modal velocities. No allocation.
+  /// out: vn_mean [m/s], vn_rms [m/s], erp [W], erp_elastic [W], erp_rigid [W],
+  /// c_0 .. c_{K'-1} [W^0.5], e_0 .. e_{K_e'-1} [W^0.5], then (per_node) v_n of
+  /// each node [m/s], from the LOF state and the body's modal velocities. No
+  /// allocation.
   void evaluate(const LofState& lof, const double* qdot, double* out) const;
 
  private:
   double rho_c_ = 0.0, area_ = 0.0;
   bool per_node_ = false;
-  Mat W_;  ///< K' x K: rows sqrt(rho c lambda_k) e_k^T
-  Vec a_;  ///< K: sum_i A_i b_i / sum A_i (the mean normal velocity is a . u)
-  Mat B_;  ///< nodes x K, per_node only
-  mutable Vec u_, c_;
+  Mat W_;                    ///< K' x K: rows sqrt(rho c lambda_k) e_k^T
+  Mat We_;                   ///< K_e' x K: rows sqrt(rho c mu_k) f_k^T (the elastic part)
+  Mat Wr_;                   ///< K_r' x K: the same for the rigid part
+  std::vector<char> rigid_;  ///< K: 1 where u's entry is a rigid-body velocity
+  Vec a_;                    ///< K: sum_i A_i b_i / sum A_i (the mean normal velocity is a . u)
+  Mat B_;                    ///< nodes x K, per_node only
+  mutable Vec u_, c_, ce_, cr_;
 };
 
 }  // namespace evas

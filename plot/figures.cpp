@@ -7,6 +7,7 @@
 #include <cmath>
 #include <fstream>
 #include <iomanip>
+#include <iostream>
 #include <sstream>
 
 #include "io/results.h"
@@ -17,6 +18,8 @@
 #include "plot/sweep_figures.h"
 #include "post/erp_spectrum.h"
 #include "post/order_spectrum.h"
+#include "post/order_tracking.h"
+#include "post/radiation.h"
 
 namespace evas {
 
@@ -42,19 +45,9 @@ std::string join(const std::vector<std::string>& v) {
   return s;
 }
 
-// A channel's display unit and the factor from its SI unit.
-struct Scale {
-  double factor = 1.0;
-  std::string unit;
-};
-Scale display(const std::string& unit) {
-  if (unit == "N") return {1e-3, "kN"};
-  if (unit == "Pa") return {1e-6, "MPa"};
-  if (unit == "rad") return {1e3, "mrad"};
-  if (unit == "m") return {1e6, "\u00b5m"};
-  if (unit == "N m") return {1.0, "N m"};
-  return {1.0, unit.empty() ? "-" : unit};
-}
+// A channel's display unit and the factor from its SI unit (plot/gnuplot.h).
+using Scale = DisplayScale;
+Scale display(const std::string& unit) { return display_scale(unit); }
 
 // The quantity a unit measures, for an axis label ("" when not known).
 std::string quantity(const std::string& unit) {
@@ -232,15 +225,24 @@ void plot_channels(const Record& rec, const PlotOptions& o, const fs::path& out,
                sc.back().unit + "]";
     }
   }
+  // the last whole cycles against the angle in the cycle (0 .. 720 deg per
+  // cycle drawn, as the film and polar figures), not the record's angle
+  double offset = 0.0;
+  std::string xlabel = ax.label;
+  if (ax.crank && o.cycles > 0 && r0 < d.values.rows()) {
+    offset = std::floor(rec.crank(r0) / o.cycle + 1e-9) * o.cycle;
+    if (offset != 0.0)
+      xlabel = "crank angle in the cycle [deg] (the record's " + short_num(offset) + " deg + x)";
+  }
   for (Eigen::Index r = r0; r < d.values.rows(); ++r) {
-    f.dat << num(ax.crank ? rec.crank(r) : d.time[r]);
+    f.dat << num(ax.crank ? rec.crank(r) - offset : d.time[r]);
     for (std::size_t k = 0; k < idx.size(); ++k)
       f.dat << " " << num(sc[k].factor * d.values(r, idx[k]));
     f.dat << "\n";
   }
   f.gp << gp_terminal(out, 1000, 600) << "set title "
        << gp_quote(o.title.empty() ? rec.name() + ": channels" : o.title) << "\n"
-       << "set xlabel " << gp_quote(ax.label) << "\nset ylabel " << gp_quote(units) << "\n"
+       << "set xlabel " << gp_quote(xlabel) << "\nset ylabel " << gp_quote(units) << "\n"
        << "set grid\nset autoscale xfix\nset key outside right top\nplot ";
   for (std::size_t k = 0; k < idx.size(); ++k)
     f.gp << (k ? ", \\\n     " : "") << dat_name(out) << " using 1:" << k + 2
@@ -287,13 +289,24 @@ void plot_polar(const Record& rec, const PlotOptions& o, const fs::path& out, Fi
        << gp_quote(o.title.empty() ? "polar load diagram of " + o.element + " (" + rec.name() +
                                          span + "; labels: crank angle in the cycle [deg])"
                                    : o.title)
-       << "\nset size ratio -1\nset grid\nset xzeroaxis lt -1\nset yzeroaxis lt -1\nunset key\n";
+       << "\nset grid\nset xzeroaxis lt -1\nset yzeroaxis lt -1\nunset key\n";
   const char* titles[2] = {"load on the shell (from the journal), bearing axes",
                            "load on the journal (from the film), axes turning with the journal"};
   for (int block = 0; block < 2; ++block) {
+    // equal scales unless the load swings 4 times more along one axis than the
+    // other (an outer main bearing's loads are a narrow strip at equal scale)
+    double wx = 0.0, wy = 0.0;
+    for (Eigen::Index r = r0; r < d.values.rows(); ++r) {
+      wx = std::max(wx, std::abs(block == 0 ? d.values(r, fx) : d.values(r, jx)));
+      wy = std::max(wy, std::abs(block == 0 ? d.values(r, fy) : d.values(r, jy)));
+    }
+    const bool equal = !(wx > 4.0 * wy || wy > 4.0 * wx);
     const std::string dat = dat_name(out);
-    f.gp << "set title " << gp_quote(titles[block])
-         << "\nset xlabel 'x [kN]'\nset ylabel 'y [kN]'\n"
+    f.gp << (equal ? "set size ratio -1\n" : "set size ratio 1\n") << "set title "
+         << gp_quote(std::string(titles[block]) + (equal ? "" : " (x, y to different scales)"))
+         << (block == 0
+                 ? "\nset xlabel 'x, bearing axis x [kN]'\nset ylabel 'y, bearing axis y [kN]'\n"
+                 : "\nset xlabel 'x, journal axis x [kN]'\nset ylabel 'y, journal axis y [kN]'\n")
          << "plot " << dat << " index " << block << " using 1:2 with lines lw 1.5 lc "
          << (block + 1);
     for (int half = 0; half < 2; ++half)
@@ -385,17 +398,103 @@ void plot_order(const Record& rec, const PlotOptions& o, const fs::path& out, Fi
     y[static_cast<std::size_t>(r)] = d.values(r, c);
   }
   const OrderSpectrum s = order_spectrum(th, y, o.cycles, o.cycle, o.max_order);
+  // the cycles pooled: at one speed, or a run-up's (then say so)
+  std::string pooled;
+  {
+    const std::size_t used = static_cast<std::size_t>(s.cycles) *
+                             static_cast<std::size_t>(std::lround(o.cycle / (th[1] - th[0])));
+    const std::size_t first = th.size() - std::min(used, th.size());
+    const std::vector<double> tt(d.time.begin() + static_cast<long>(first), d.time.end());
+    const std::vector<double> ta(th.begin() + static_cast<long>(first), th.end());
+    if (s.cycles >= 2 && speed_spread(tt, ta, o.cycle) > 0.02) {
+      std::vector<double> zero(ta.size(), 0.0);
+      const OrderTrack tr = order_tracking(tt, ta, zero, {}, o.cycle);
+      const auto [lo, hi] = std::minmax_element(tr.rpm.begin(), tr.rpm.end());
+      pooled = "; the cycles pooled run from " + short_num(*lo) + " to " + short_num(*hi) +
+               " rpm (a run-up: evas plot order-track draws each order against speed)";
+      std::cerr << "evas plot order: warning: " << rec.name() << pooled.substr(1) << "\n";
+    }
+  }
   const Scale sc = display(d.units[c]);
   for (std::size_t k = 0; k < s.order.size(); ++k)
     f.dat << num(s.order[k]) << " " << num(sc.factor * s.amplitude[k]) << "\n";
   f.gp << gp_terminal(out, 1000, 600) << "set title "
        << gp_quote(o.title.empty() ? "order spectrum of " + d.names[c] + " (" + rec.name() +
-                                         "): " + cycles_used(s, o.cycle)
+                                         "): " + cycles_used(s, o.cycle) + pooled
                                    : o.title)
        << "\nset xlabel 'engine order [-]'\nset ylabel " << gp_quote("amplitude [" + sc.unit + "]")
        << "\nset grid\nset xtics 1\nset mxtics 2\nset xrange [-0.25:" << num(o.max_order + 0.25)
        << "]\nset yrange [0:*]\nunset key\nplot " << dat_name(out)
        << " using 1:2 with impulses lw 6 lc 1\n";
+}
+
+// Order tracking of a run-up (post/order_tracking.h): each order's amplitude
+// per 720-deg cycle against the cycle's mean speed.
+void plot_order_track(const Record& rec, const PlotOptions& o, const fs::path& out, Figure& f) {
+  if (o.channels.empty()) throw InputError("plot order-track: give --channel NAME (repeatable)");
+  if (!rec.has_crank())
+    throw InputError(rec.name() +
+                     ": order tracking needs the crank-angle output grid (a crank_angle channel)");
+  const ResultsData& d = rec.data();
+  std::vector<int> cols;
+  for (const auto& name : o.channels) cols.push_back(rec.require(name, ""));
+  std::vector<double> th;
+  for (Eigen::Index r = 0; r < d.values.rows(); ++r) th.push_back(rec.crank(r));
+  const std::vector<double> orders =
+      o.orders.empty() ? std::vector<double>{1.0, 2.0, 4.0, 6.0} : o.orders;
+  const Scale sc = display(d.units[static_cast<std::size_t>(cols[0])]);
+  for (int c : cols)
+    if (d.units[static_cast<std::size_t>(c)] != d.units[static_cast<std::size_t>(cols[0])])
+      throw InputError("plot order-track: the channels have different units (" +
+                       d.names[static_cast<std::size_t>(cols[0])] + ": " +
+                       d.units[static_cast<std::size_t>(cols[0])] + ", " +
+                       d.names[static_cast<std::size_t>(c)] + ": " +
+                       d.units[static_cast<std::size_t>(c)] + ")");
+  // powers' cycle means (ERP) as levels: they span decades
+  const bool levels =
+      d.units[static_cast<std::size_t>(cols[0])] == "W" && orders.size() == 1 && orders[0] == 0.0;
+  double change = 0.0;
+  std::size_t cycles = 0;
+  std::vector<std::string> titles;
+  for (int c : cols) {
+    std::vector<double> y;
+    for (Eigen::Index r = 0; r < d.values.rows(); ++r) y.push_back(d.values(r, c));
+    const OrderTrack tr = order_tracking(d.time, th, y, orders, o.cycle);
+    cycles = tr.rpm.size();
+    for (double x : tr.change) change = std::max(change, std::abs(x));
+    for (std::size_t j = 0; j < orders.size(); ++j) {
+      for (std::size_t k = 0; k < tr.rpm.size(); ++k) {
+        const double a = tr.amplitude[k][j];
+        f.dat << num(tr.rpm[k]) << " "
+              << (levels ? (a > 0.0 ? num(10.0 * std::log10(a / 1e-12)) : std::string("NaN"))
+                         : num(sc.factor * a))
+              << "\n";
+      }
+      f.dat << "\n\n";
+      const std::string what =
+          orders[j] == 0.0 ? "mean (order 0)" : "order " + short_num(orders[j]);
+      titles.push_back(cols.size() > 1 ? d.names[static_cast<std::size_t>(c)] + " " + what : what);
+    }
+  }
+  const std::string who = cols.size() == 1 ? d.names[static_cast<std::size_t>(cols[0])]
+                                           : std::to_string(cols.size()) + " channels";
+  f.gp << gp_terminal(out, 1000, 600) << "set title "
+       << gp_quote(o.title.empty()
+                       ? "order tracking of " + who + " (" + rec.name() +
+                             "): " + std::to_string(cycles) + " cycles of " + short_num(o.cycle) +
+                             " deg, speed change within a cycle up to " +
+                             short_num(100.0 * change) + " %"
+                       : o.title)
+       << "\nset xlabel 'crank speed [rpm] (mean of each cycle)'\nset ylabel "
+       << gp_quote(levels ? "mean over the cycle, level [dB re 1 pW]"
+                          : "amplitude [" + sc.unit + "]")
+       << "\nset grid\n"
+       << (levels ? "" : "set yrange [0:*]\n") << "set key outside bottom center horizontal\nplot ";
+  for (std::size_t j = 0; j < titles.size(); ++j)
+    f.gp << (j ? ", " : "") << dat_name(out) << " index " << j
+         << " using 1:2 with linespoints lw 2 pt 7 ps 0.6 lc " << j + 1 << " title "
+         << gp_quote(titles[j]);
+  f.gp << "\n";
 }
 
 void plot_spectrum(const Record& rec, const PlotOptions& o, const fs::path& out, Figure& f) {
@@ -450,25 +549,52 @@ void plot_erp(const Record& rec, const PlotOptions& o, const fs::path& out, Figu
     }
   if (!(top != 0.0)) throw InputError(rec.name() + ": " + name + " radiates no power");
   f.dat << "\n\n";  // second data block: the bands as steps
-  for (const ErpBand& b : bands)
-    if (b.bins > 0 && b.power > 0.0 && b.lower <= fmax) {
-      f.dat << num(b.lower) << " " << num(erp_level(b.power)) << "\n";
-      f.dat << num(b.upper) << " " << num(erp_level(b.power)) << "\n\n";
-      top = std::max(top, erp_level(b.power));
-    }
+  auto steps = [&](const std::vector<ErpBand>& bl, bool a_weighted) {
+    bool any = false;
+    for (const ErpBand& b : bl)
+      if (b.bins > 0 && b.power > 0.0 && b.lower <= fmax) {
+        const double l = erp_level(b.power) + (a_weighted ? a_weighting_db(b.centre) : 0.0);
+        f.dat << num(b.lower) << " " << num(l) << "\n";
+        f.dat << num(b.upper) << " " << num(l) << "\n\n";
+        top = std::max(top, l);
+        any = true;
+      }
+    if (!any) f.dat << "nan nan\n";  // an empty block would end the file for gnuplot
+  };
+  steps(bands, false);
+  // the elastic part (components NAME.e<k>), unweighted and A-weighted
+  const std::vector<std::vector<double>> ecomps = erp_components(d.names, d.values, name, "e");
+  std::vector<ErpBand> ebands;
+  ErpSpectrum e;
+  if (!ecomps.empty()) {
+    e = erp_spectrum(d.time, ecomps, o.spectrum, &ebands);
+    f.dat << "\n";
+    steps(ebands, false);
+    f.dat << "\n";
+    steps(ebands, true);
+  }
+  std::string mean = "mean " + short_num(erp_level(s.mean)) + " dB";
+  if (!ecomps.empty() && e.mean > 0.0) mean += ", elastic " + short_num(erp_level(e.mean)) + " dB";
   f.gp << gp_terminal(out, 1000, 600) << "set title "
        << gp_quote(o.title.empty()
-                       ? "equivalent radiated power of " + name + " (" + rec.name() +
-                             ", t = " + short_num(s.t0) + " .. " + short_num(s.t1) + " s, " +
-                             o.spectrum.window + " window, df = " + short_num(s.df) + " Hz; mean " +
-                             short_num(erp_level(s.mean)) + " dB)"
+                       ? "ERP of " + name + " (" + rec.name() + ", t = " + short_num(s.t0) +
+                             " .. " + short_num(s.t1) + " s, " + o.spectrum.window +
+                             " window, df = " + short_num(s.df) + " Hz; " + mean + ")"
                        : o.title)
-       << "\nset xlabel 'frequency [Hz]'\nset ylabel 'ERP level [dB re 1 pW]'\n"
+       << "\nset xlabel 'frequency [Hz]'\nset ylabel 'ERP level [dB re 1 pW; dB(A) re 1 pW]'\n"
        << "set logscale x\nset xrange [" << num(std::max(s.df, 10.0)) << ":" << num(fmax)
        << "]\nset yrange [" << num(top - 80.0) << ":" << num(top + 5.0) << "]\n"
-       << "set grid\nset key top right\nplot " << dat_name(out)
-       << " index 0 using 1:2 with impulses lw 1.5 lc 1 title 'per bin (tonal power)', "
-       << dat_name(out) << " index 1 using 1:2 with lines lw 2.5 lc 2 title 'third-octave bands'\n";
+       << "set grid\nset key outside bottom center horizontal\nplot " << dat_name(out)
+       << " index 0 using 1:2 with impulses lw 1.5 lc rgb '#a0a0a0' title 'per bin (tonal power)', "
+       << dat_name(out) << " index 1 using 1:2 with lines lw 2.5 lc 1 title 'third-octave bands'";
+  if (!ecomps.empty())
+    f.gp << ", " << dat_name(out)
+         << " index 2 using 1:2 with lines lw 2.5 lc 2 title 'elastic part (rigid-body motion "
+            "left out)', "
+         << dat_name(out)
+         << " index 3 using 1:2 with lines lw 2 dt 2 lc 3 title 'elastic part, "
+            "A-weighted [dB(A)]'";
+  f.gp << "\n";
 }
 
 // waterfall, campbell, order-cuts of a sweep file (plot/sweep_figures.h).
@@ -519,6 +645,9 @@ const std::vector<std::pair<std::string, std::string>>& plot_kinds() {
       {"orbit", "journal orbit inside the clearance circle (--element)"},
       {"film", "minimum film thickness and peak pressure against crank angle (--element)"},
       {"order", "order spectrum of a channel (--channel) over whole cycles"},
+      {"order-track",
+       "order tracking of a run-up: amplitude of orders (--order) of a channel (--channel) "
+       "per cycle against speed"},
       {"spectrum", "amplitude spectrum of a channel (--channel) over frequency"},
       {"erp",
        "equivalent radiated power of a surface output (--channel NAME): per bin and "
@@ -575,6 +704,7 @@ std::vector<std::string> plot_results(const std::string& results, const PlotOpti
   if (o.kind == "orbit") plot_orbit(rec, o, out, f);
   if (o.kind == "film") plot_film(rec, o, out, f);
   if (o.kind == "order") plot_order(rec, o, out, f);
+  if (o.kind == "order-track") plot_order_track(rec, o, out, f);
   if (o.kind == "spectrum") plot_spectrum(rec, o, out, f);
   if (o.kind == "erp") plot_erp(rec, o, out, f);
   std::error_code ec;

@@ -55,4 +55,12 @@ std::string gp_terminal(const std::filesystem::path& out, int w, int h) {
   return gp + "set output " + gp_quote(out.filename().string()) + "\n";
 }
 
+DisplayScale display_scale(const std::string& unit) {
+  if (unit == "N") return {1e-3, "kN"};
+  if (unit == "Pa") return {1e-6, "MPa"};
+  if (unit == "rad") return {1e3, "mrad"};
+  if (unit == "m") return {1e6, "\u00b5m"};
+  return {1.0, unit.empty() ? "-" : unit};
+}
+
 }  // namespace evas

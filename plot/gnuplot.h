@@ -28,4 +28,12 @@ std::string gp_num(double x, int digits);
 /// in the script's folder).
 std::string gp_terminal(const std::filesystem::path& out, int w, int h);
 
+/// The unit a figure shows a channel of SI unit `unit` in, and the factor from
+/// it: kN for N, MPa for Pa, mrad for rad, micrometres for m (else the unit).
+struct DisplayScale {
+  double factor = 1.0;
+  std::string unit;
+};
+DisplayScale display_scale(const std::string& unit);
+
 }  // namespace evas

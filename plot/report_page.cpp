@@ -102,6 +102,14 @@ void summary_section(const Run& run, report::Page& page) {
       {"crank angle", general(th0) + " .. " + general(th1) + " deg, " +
                           std::to_string(run.whole_cycles) + " whole cycle(s) of 720 deg"},
       {"mean speed over the analysed cycles", fixed(rpm, 1) + " rpm"},
+      {"speed over the record",
+       run.runup() ? "a run-up (or run-down): " + fixed(run.rpm_first, 0) +
+                         " rpm in the first "
+                         "whole cycle, " +
+                         fixed(run.rpm_last, 0) +
+                         " rpm in the last; the orders are tracked against speed below"
+                   : "constant (the whole cycles' mean speeds within " +
+                         general(100.0 * run.speed_spread, 2) + " %)"},
       {"analysed", run.span_text() + ", from t = " + general(t0) + " s"},
       {"channels", std::to_string(d.names.size())},
       {"journal bearings", listing(run.bearings)}};
@@ -168,7 +176,11 @@ void bearings_section(const Run& run, Drawer& draw, report::Page& page, ReportRe
                 "Polar load diagram of " + b + " over " + run.span_text() +
                     ": left the load on the shell (-fx, -fy) in the bearing's axes, right the "
                     "load on the journal in axes turning with it; dots every 90 deg of crank "
-                    "angle [kN].");
+                    "angle [kN]. The bearing's axes are those of the element's first marker "
+                    "(on the validation engine's bores x lies along the "
+                    "cylinders' axis, and y across the engine: fx is the vertical load, fy "
+                    "the horizontal one); a panel whose load swings 4 times more along one "
+                    "axis than the other is drawn to different scales, as its title says.");
     o.kind = "orbit";
     page.figure(draw.draw("orbit_" + file_word(b) + ".png", o), "journal orbit of " + b,
                 "Orbit of the journal centre of " + b +
@@ -254,6 +266,30 @@ void loads_section(const Run& run, Drawer& draw, report::Page& page, ReportResul
   } catch (const InputError& e) {
     page.paragraph("No order spectra: " + report::escape(e.what()), "note");
     out.notes.push_back(std::string("no order spectra: ") + e.what());
+    return;
+  }
+  if (run.runup()) {
+    page.paragraph(
+        "The speed changes over the record (" + fixed(run.rpm_first, 0) + " to " +
+        fixed(run.rpm_last, 0) +
+        " rpm): the table above is the last cycle's alone, and the figures below track each "
+        "order per 720-deg cycle against the cycle's mean speed (" +
+        code("evas plot order-track") +
+        "; the title gives the largest change of speed "
+        "within one cycle, which smears a resonance crossed during it).");
+    for (const auto& b : run.bearings) {
+      page.begin_row();
+      for (const char* c : {"fx", "fy"}) {
+        PlotOptions o = draw.options("order-track");
+        o.channels = {b + "." + c};
+        o.orders = {1.0, 2.0, 4.0, 6.0};
+        page.figure(draw.draw("order_track_" + file_word(b) + "_" + c + ".png", o),
+                    "order tracking of " + b + "." + c,
+                    "Orders 1, 2, 4 and 6 of " + b + "." + c +
+                        " per cycle against the cycle's mean speed [kN].");
+      }
+      page.end_row();
+    }
     return;
   }
   for (const auto& b : run.bearings) {
@@ -344,11 +380,22 @@ void surface_section(const Run& run, Drawer& draw, report::Page& page, ReportRes
   const std::vector<std::pair<std::string, std::string>> kinds = {
       {".vn_rms", "RMS over the surface of the normal velocity"},
       {".vn_mean", "mean over the surface of the normal velocity"},
-      {".erp", "equivalent radiated power"}};
+      {".erp",
+       "equivalent radiated power (with its elastic part, the body's deformation, and its "
+       "rigid-body part, e.g. the rocking on the mounts)"}};
   bool any = false;
   for (const auto& [tail, what] : kinds) {
-    const auto ch = run.ending(tail);
+    auto ch = run.ending(tail);
     if (ch.empty()) continue;
+    if (tail == ".erp") {  // each surface's parts beside its total
+      std::vector<std::string> all;
+      for (const auto& c : ch) {
+        all.push_back(c);
+        for (const char* part : {"_elastic", "_rigid"})
+          if (run.find(c + part) >= 0) all.push_back(c + part);
+      }
+      ch = all;
+    }
     any = true;
     std::vector<std::vector<std::string>> rows;
     for (const auto& c : ch) {
@@ -375,6 +422,23 @@ void surface_section(const Run& run, Drawer& draw, report::Page& page, ReportRes
   for (const auto& e : run.ending(".erp")) {
     const std::string name = e.substr(0, e.size() - 4);
     if (run.find(name + ".c0") < 0) continue;
+    if (run.runup()) {
+      // a spectrum over time needs a uniform time grid: the run-up's ERP per
+      // cycle against speed instead
+      PlotOptions o = draw.options("order-track");
+      o.channels = {e};
+      for (const char* part : {".erp_elastic", ".erp_rigid"})
+        if (run.find(name + part) >= 0) o.channels.push_back(name + part);
+      o.orders = {0.0};
+      const std::string what = "equivalent radiated power of " + name + " against speed";
+      page.figure(draw.draw("erp_track_" + file_word(name) + ".png", o), what,
+                  "The mean ERP of " + name +
+                      " over each 720-deg cycle against the cycle's mean speed [W]: the whole, "
+                      "the elastic part (the block's deformation) and the rigid-body part (its "
+                      "motion on the mounts). A spectrum over time needs a constant speed (the "
+                      "crank-angle grid of a run-up is not uniform in time).");
+      continue;
+    }
     PlotOptions o = draw.options("erp");
     o.channels = {name};
     o.spectrum.t0 = run.d.time[static_cast<std::size_t>(run.r0)];
@@ -382,8 +446,13 @@ void surface_section(const Run& run, Drawer& draw, report::Page& page, ReportRes
     page.figure(draw.draw("erp_spectrum_" + file_word(name) + ".png", o), what,
                 "The " + what + " over " + run.span_text() +
                     ": the power of each frequency bin (tonal) and of each third-octave band, "
-                    "in dB re 1 pW (Hann window; evas spectrum --erp " +
-                    name + " --bands third-octave prints the bands).");
+                    "in dB re 1 pW, and the bands of the elastic part (the body's deformation: "
+                    "the rigid-body motion, which radiates little at these frequencies, left "
+                    "out), unweighted and A-weighted (IEC 61672-1) (Hann window; evas spectrum "
+                    "--erp " +
+                    name +
+                    " --bands third-octave prints the bands; --radiation piston:R weights the "
+                    "elastic part by a baffled piston's radiation efficiency).");
   }
   if (!any) {
     page.paragraph("This results file has no surface-velocity channels (names ending in " +

@@ -13,6 +13,7 @@
 #include "io/hdf5_util.h"
 #include "model/stats.h"
 #include "model/types.h"
+#include "post/order_tracking.h"
 
 namespace evas::report {
 
@@ -98,6 +99,20 @@ Run read_run(const std::string& path, int cycles) {
     Eigen::Index r = n - 1;
     while (r > 0 && run.at(r - 1, run.crank) > first) --r;
     run.r0 = r;
+  }
+  if (run.whole_cycles >= 2) {
+    std::vector<double> th(static_cast<std::size_t>(n));
+    for (Eigen::Index r = 0; r < n; ++r) th[static_cast<std::size_t>(r)] = run.at(r, run.crank);
+    try {
+      run.speed_spread = speed_spread(run.d.time, th, kCycle);
+      if (run.runup()) {
+        const OrderTrack tr = order_tracking(run.d.time, th, th, {}, kCycle);
+        run.rpm_first = tr.rpm.front();
+        run.rpm_last = tr.rpm.back();
+      }
+    } catch (const InputError&) {
+      run.speed_spread = 0.0;  // a grid the tracking cannot use: read as one speed
+    }
   }
   return run;
 }

@@ -31,6 +31,11 @@ struct Run {
   int whole_cycles = 0;
   int cycles = 0;       // the cycles drawn and analysed (0: the whole record)
   Eigen::Index r0 = 0;  // their first row
+  // (max - min) / mean of the whole cycles' mean speeds (post/order_tracking.h)
+  double speed_spread = 0.0;
+  double rpm_first = 0.0, rpm_last = 0.0;  // mean speed of the first and last whole cycle
+  /// A run-up or run-down: the speed changes by more than 2 % over the record.
+  bool runup() const { return speed_spread > 0.02; }
   Eigen::Index rows() const { return d.values.rows(); }
   int find(const std::string& name) const {
     for (std::size_t i = 0; i < d.names.size(); ++i)

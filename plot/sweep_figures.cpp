@@ -145,6 +145,18 @@ SweepFigureData read_sweep_figures(const std::string& path, const std::string& w
       n.direction = dir[i];
       d.natural.push_back(n);
     }
+    if (h5::exists(f, "/assembled/frequency")) {  // sweeps before it have none
+      const std::vector<double> rpm = h5::read_doubles(f, "/assembled/speed", dims);
+      const std::vector<double> ahz = h5::read_doubles(f, "/assembled/frequency", dims);
+      const std::vector<double> zeta = h5::read_doubles(f, "/assembled/damping_ratio", dims);
+      const auto where = h5::read_strings(f, "/assembled/where");
+      const auto label = h5::read_strings(f, "/assembled/label");
+      if (rpm.size() != ahz.size() || zeta.size() != ahz.size() || where.size() != ahz.size() ||
+          label.size() != ahz.size())
+        throw h5::Failure("the /assembled datasets differ in length");
+      for (std::size_t i = 0; i < ahz.size(); ++i)
+        d.assembled.push_back({rpm[i], ahz[i], zeta[i], where[i], label[i]});
+    }
   } catch (const h5::Failure& e) {
     throw InputError(path + ": " + e.what());
   }
@@ -170,8 +182,8 @@ std::string order_cuts_script(const SweepFigureData& d, const std::vector<int>& 
         for (int k : a.groups.at(a.order[grp])) {
           const auto& amp = d.amplitude[static_cast<std::size_t>(k)];
           if (amp.empty() || j >= d.orders.size() || !std::isfinite(amp[c][j])) continue;
-          gp << gp_num(a.x[static_cast<std::size_t>(k)], 10) << " " << gp_num(amp[c][j], 10)
-             << "\n";
+          gp << gp_num(a.x[static_cast<std::size_t>(k)], 10) << " "
+             << gp_num(display_scale(d.units[c]).factor * amp[c][j], 10) << "\n";
         }
         gp << "EOD\n";
         pl << (pl.tellp() > 0 ? ", " : "plot ") << "$C" << block
@@ -186,11 +198,11 @@ std::string order_cuts_script(const SweepFigureData& d, const std::vector<int>& 
   gp << "set multiplot layout " << (chans.size() + 1) / 2 << "," << cols << " title "
      << gp_quote("order cuts: " + d.scene_name + " (amplitude of each order over the last " +
                  std::to_string(d.cycles) + " cycle(s))")
-     << "\nset grid\nset key top left\nset xlabel " << gp_quote(a.label) << "\n";
+     << "\nset grid\nset key outside right top\nset xlabel " << gp_quote(a.label) << "\n";
   for (std::size_t i = 0; i < chans.size(); ++i) {
     const auto c = static_cast<std::size_t>(chans[i]);
     gp << "set title " << gp_quote(d.names[c]) << "\nset ylabel "
-       << gp_quote("amplitude [" + d.units[c] + "]") << "\n"
+       << gp_quote("amplitude [" + display_scale(d.units[c]).unit + "]") << "\n"
        << plots[i] << "\n";
   }
   gp << "unset multiplot\n";
@@ -210,7 +222,7 @@ std::string waterfall_script(const SweepFigureData& d, int channel, const fs::pa
     for (std::size_t j = 0; j < d.orders.size(); ++j)
       if (std::isfinite(amp[c][j]))
         gp << gp_num(d.orders[j], 6) << " " << gp_num(a.x[static_cast<std::size_t>(k)], 10) << " "
-           << gp_num(amp[c][j], 10) << "\n";
+           << gp_num(display_scale(d.units[c]).factor * amp[c][j], 10) << "\n";
     gp << "\n\n";  // one spectrum per block
   }
   gp << "EOD\n"
@@ -218,10 +230,12 @@ std::string waterfall_script(const SweepFigureData& d, int channel, const fs::pa
      << gp_quote("waterfall: " + d.names[c] + ", " + d.scene_name +
                  (a.order.front().empty() ? "" : " (" + a.order.front() + ")"))
      << "\nset xlabel 'engine order'\nset ylabel " << gp_quote(a.label)
-     << " rotate parallel\nset zlabel " << gp_quote("amplitude [" + d.units[c] + "]")
+     << " rotate parallel\nset zlabel "
+     << gp_quote("amplitude [" + display_scale(d.units[c]).unit + "]")
      << " rotate parallel\nset view 55, 35\nset grid\nset xyplane at 0\nset palette "
-        "rgbformulae 33,13,10\nset cblabel "
-     << gp_quote("amplitude [" + d.units[c] + "]")
+        "rgbformulae 33,13,10\nset colorbox vertical user origin 0.86, 0.2 size 0.025, 0.6\n"
+        "set rmargin at screen 0.8\nset cblabel "
+     << gp_quote("amplitude [" + display_scale(d.units[c]).unit + "]") << " offset 1,0"
      << "\nsplot $W using 1:2:3 with impulses lw 3 lc palette notitle, "
         "$W using 1:2:3 with lines lc rgb 'gray40' notitle\n";
   return gp.str();
@@ -237,27 +251,65 @@ std::string campbell_script(const SweepFigureData& d, const fs::path& out) {
     }
   if (!(top > 0.0)) return "";
   const double xmax = 1.1 * top, ymax = d.max_order * xmax / 60.0;
+  // the assembled modes drawn: lightly damped ones (a resonance a spectrum shows)
+  constexpr double kZetaDrawn = 0.3;
+  std::vector<const SweepFigureData::Mode*> drawn;
+  int overdamped = 0;
+  double ymin = 0.5 * xmax / 60.0;  // order 0.5 at the top speed
+  for (const auto& m : d.assembled) {
+    if (!(m.hz > 0.0) || m.hz > ymax) continue;
+    if (m.damping_ratio > kZetaDrawn) {
+      ++overdamped;
+      continue;
+    }
+    drawn.push_back(&m);
+    ymin = std::min(ymin, m.hz);
+  }
+  for (const auto& n : d.natural)
+    if (n.hz > 0.0) ymin = std::min(ymin, n.hz);
+  ymin = std::pow(10.0, std::floor(std::log10(std::max(ymin, 0.1) * 0.8)));
+  const bool assembled = !d.assembled.empty();
   std::ostringstream gp;
   gp << "# Campbell diagram of " << d.scene_name << " (evas study sweep)\n"
      << gp_terminal(out, 1000, 700) << "set title "
      << gp_quote("Campbell diagram: " + d.scene_name +
-                 " (natural frequencies against engine orders)")
-     << "\nset xlabel 'crank speed [rpm]'\nset ylabel 'frequency [Hz]'\nset xrange [0:"
-     << gp_num(xmax, 8) << "]\nset yrange [0:" << gp_num(ymax, 8)
-     << "]\nset grid\n"
-     // every curve is a straight line: two samples draw it exactly (gnuplot's
-     // default of 100 per curve is most of the figure's drawing time)
-     << "set samples 2\nset key outside right top\n";
-  for (double o = 0.5; o <= d.max_order + 1e-9; o += 0.5) {
+                 (assembled ? " (modes of the assembled engine, linearized over each point's "
+                              "steady cycle)"
+                            : " (the bodies' own modes and the rigid engine on its mounts)"))
+     << "\nset xlabel 'crank speed [rpm]'\nset ylabel 'frequency [Hz] (log scale)'\nset xrange [0:"
+     << gp_num(xmax, 8) << "]\nset yrange [" << gp_num(ymin, 8) << ":" << gp_num(ymax, 8)
+     << "]\nset logscale y\nset grid xtics ytics mytics\n"
+     // the order lines are curves on the log axis: a few dozen samples draw them
+     << "set samples 60\nset key outside bottom center horizontal\n";
+  for (double o = 1.0; o <= d.max_order + 1e-9; o += 1.0) {
+    if (o > 6.0 && std::fmod(o, 2.0) != 0.0) continue;  // the high orders crowd on a log axis
     const double y_end = o * xmax / 60.0;
     const double xl = y_end > ymax ? ymax * 60.0 / o : xmax;
-    if (std::abs(o - std::round(o)) < 1e-9)
-      gp << "set label " << gp_quote(gp_num(o, 3)) << " at " << gp_num(xl, 8) << ","
-         << gp_num(o * xl / 60.0, 8) << " offset -1.2,0.6 tc rgb 'gray30'\n";
+    gp << "set label " << gp_quote(gp_num(o, 3)) << " at " << gp_num(xl, 8) << ","
+       << gp_num(o * xl / 60.0, 8) << " offset -1.2,0.6 tc rgb 'gray30'\n";
   }
   for (double s : speeds)
-    gp << "set arrow from " << gp_num(s, 8) << ",0 to " << gp_num(s, 8) << "," << gp_num(ymax, 8)
-       << " nohead lc rgb 'gray75' dt 3\n";
+    gp << "set arrow from " << gp_num(s, 8) << "," << gp_num(ymin, 8) << " to " << gp_num(s, 8)
+       << "," << gp_num(ymax, 8) << " nohead lc rgb 'gray75' dt 3\n";
+  // the assembled modes as data blocks, one per kind
+  const std::vector<std::pair<std::string, std::string>> kinds = {
+      {"mount", "mount (rigid engine on its mounts)"},
+      {"driveline", "driveline (crank rotation, couplings)"},
+      {"body", "body (elastic, crank in its bearings)"}};
+  std::vector<std::pair<std::string, std::string>> blocks;  // (name, title)
+  for (const auto& [where, title] : kinds) {
+    std::ostringstream b;
+    int n = 0;
+    for (const auto* m : drawn)
+      if (m->where == where) {
+        b << gp_num(m->rpm, 8) << " " << gp_num(m->hz, 8) << "\n";
+        ++n;
+      }
+    if (n == 0) continue;
+    const std::string name = "$M" + std::to_string(blocks.size());
+    gp << name << " << EOD\n" << b.str() << "EOD\n";
+    blocks.push_back({name, title});
+  }
   gp << "plot ";
   bool first = true;
   auto sep = [&] {
@@ -267,20 +319,37 @@ std::string campbell_script(const SweepFigureData& d, const fs::path& out) {
   for (double o = 0.5; o <= d.max_order + 1e-9; o += 0.5) {
     const bool whole = std::abs(o - std::round(o)) < 1e-9;
     sep();
-    gp << gp_num(o, 3) << "*x/60 with lines lc rgb " << (whole ? "'gray30'" : "'gray70'")
-       << (whole ? " dt 1" : " dt 2") << " " << (o == 0.5 ? "title 'engine orders'" : "notitle");
+    gp << "(x > 0 ? " << gp_num(o, 3) << "*x/60 : 1/0) with lines lc rgb "
+       << (whole ? "'gray30'" : "'gray70'") << (whole ? " dt 1" : " dt 2") << " "
+       << (o == 0.5 ? "title 'engine orders'" : "notitle");
   }
-  std::map<std::string, int> shown;  // one legend entry per body and kind
-  int colour = 1;
-  std::map<std::string, int> colours;
-  for (const auto& n : d.natural) {
-    if (!(n.hz > 0.0) || n.hz > ymax) continue;
-    const std::string who =
-        n.kind == "mount" ? "mount modes (rigid engine)" : n.body + " " + n.kind + " modes";
-    if (!colours.count(who)) colours[who] = colour++;
-    sep();
-    gp << gp_num(n.hz, 8) << " with lines lw 2 lc " << colours[who] << " "
-       << (shown[who]++ ? std::string("notitle") : "title " + gp_quote(who));
+  if (assembled) {
+    const char* colour[] = {"'#1f77b4'", "'#d62728'", "'#2ca02c'", "'#9467bd'"};
+    const char* point[] = {"7", "5", "9", "11"};
+    for (std::size_t i = 0; i < blocks.size(); ++i) {
+      sep();
+      gp << blocks[i].first << " using 1:2 with points pt " << point[i % 4] << " ps 1.3 lc rgb "
+         << colour[i % 4] << " title " << gp_quote(blocks[i].second);
+    }
+    if (overdamped > 0) {
+      sep();
+      gp << "NaN with points lc rgb 'white' title "
+         << gp_quote(std::to_string(overdamped) + " modes with damping ratio > " +
+                     gp_num(kZetaDrawn, 2) + " not drawn (campbell.csv has them)");
+    }
+  } else {
+    std::map<std::string, int> shown;  // one legend entry per body and kind
+    int colour = 1;
+    std::map<std::string, int> colours;
+    for (const auto& n : d.natural) {
+      if (!(n.hz > 0.0) || n.hz > ymax) continue;
+      const std::string who =
+          n.kind == "mount" ? "mount modes (rigid engine)" : n.body + " " + n.kind + " modes";
+      if (!colours.count(who)) colours[who] = colour++;
+      sep();
+      gp << gp_num(n.hz, 8) << " with lines lw 2 lc " << colours[who] << " "
+         << (shown[who]++ ? std::string("notitle") : "title " + gp_quote(who));
+    }
   }
   gp << "\n";
   return gp.str();

@@ -28,7 +28,13 @@ struct SweepFigureData {
   /// [task][channel][order]; empty for a task without a spectrum
   std::vector<std::vector<std::vector<double>>> amplitude;
   std::vector<NaturalFrequency> natural;  ///< of the scene's bodies (Campbell)
-  int cycles = 1;                         ///< engine cycles per spectrum
+  /// The assembled system's modes per point (/assembled; post/assembled_modes.h)
+  struct Mode {
+    double rpm = 0.0, hz = 0.0, damping_ratio = 0.0;
+    std::string where, label;
+  };
+  std::vector<Mode> assembled;
+  int cycles = 1;  ///< engine cycles per spectrum
   double max_order = 12.0;
 };
 

@@ -8,10 +8,11 @@
 namespace evas {
 
 std::vector<std::vector<double>> erp_components(const std::vector<std::string>& names,
-                                                const Mat& values, const std::string& name) {
+                                                const Mat& values, const std::string& name,
+                                                const std::string& prefix) {
   std::vector<std::vector<double>> out;
   for (int k = 0;; ++k) {
-    const std::string want = name + ".c" + std::to_string(k);
+    const std::string want = name + "." + prefix + std::to_string(k);
     const auto it = std::find(names.begin(), names.end(), want);
     if (it == names.end()) return out;
     const Eigen::Index c = it - names.begin();

@@ -48,9 +48,10 @@ ErpSpectrum erp_spectrum(const std::vector<double>& t,
 
 /// The components NAME.c0, NAME.c1, ... of surface output `name` among the
 /// channels `names`, each a column of `values` (rows x channels); empty when
-/// the channels hold none.
+/// the channels hold none. `prefix` "e": the elastic part's NAME.e0, NAME.e1, ...
 std::vector<std::vector<double>> erp_components(const std::vector<std::string>& names,
-                                                const Mat& values, const std::string& name);
+                                                const Mat& values, const std::string& name,
+                                                const std::string& prefix = "c");
 
 /// 10 log10(power / 1e-12 W) [dB re 1 pW]; power must be > 0.
 double erp_level(double power);

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <iomanip>
 #include <sstream>
 
 #include "integrators/settings.h"
@@ -171,11 +172,35 @@ std::vector<std::string> linear_range(const std::string& where, const std::strin
                      "': a linear range A..B:STEP needs B >= A and STEP > 0");
   const double n = std::floor((b - a) / step + 1e-9);
   if (n > 100000) throw InputError(where + ": '" + item + "': more than 100000 values");
+  // decimals written after the point (-1: an exponent, or none to go by)
+  auto decimals = [](const std::string& t) {
+    if (t.find_first_of("eE") != std::string::npos) return -1;
+    const auto p = t.find('.');
+    return p == std::string::npos ? 0 : static_cast<int>(t.size() - p - 1);
+  };
+  const int da = decimals(item.substr(0, dots)), ds = decimals(item.substr(colon + 1));
+  const int d = da < 0 || ds < 0 ? -1 : std::max(da, ds);
   std::vector<std::string> out;
-  // A + k S with one rounding (fma): the same value whatever the compiler
-  // contracts, and the nearest double to the exact one
-  for (long k = 0; k <= static_cast<long>(n); ++k)
-    out.push_back(number_text(std::fma(static_cast<double>(k), step, a)));
+  for (long k = 0; k <= static_cast<long>(n); ++k) {
+    // A + k S with one rounding (fma): the same value whatever the compiler
+    // contracts, and the nearest double to the exact one
+    const double v = std::fma(static_cast<double>(k), step, a);
+    // written with the decimals A and S were written with (157.08, not
+    // 157.07999999999998 for 104.72 + 52.36): the value the user meant
+    std::string text = number_text(v);
+    if (d >= 0 && d <= 15) {
+      std::ostringstream os;
+      os << std::fixed << std::setprecision(d) << v;
+      std::string t = os.str();
+      if (t.find('.') != std::string::npos) {
+        while (t.back() == '0') t.pop_back();
+        if (t.back() == '.') t.pop_back();
+      }
+      if (t == "-0") t = "0";
+      if (std::abs(std::strtod(t.c_str(), nullptr) - v) <= 1e-9 * step) text = t;
+    }
+    out.push_back(text);
+  }
   return out;
 }
 

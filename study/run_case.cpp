@@ -194,12 +194,23 @@ RunData run_periodic_case(const SceneSource& src, const IntegratorSettings& sett
       }
       d.state.assign(r.q.data(), r.q.data() + r.q.size());
       d.state.insert(d.state.end(), r.v.data(), r.v.data() + r.v.size());
+      const long every = std::max(1L, nr / 36);
+      for (long i = 0; i < nr; i += every) {
+        const auto iu = static_cast<std::size_t>(i);
+        d.cycle_t.push_back(r.sample_t[iu]);
+        d.cycle_states.insert(d.cycle_states.end(), r.sample_q[iu].data(),
+                              r.sample_q[iu].data() + r.sample_q[iu].size());
+        d.cycle_states.insert(d.cycle_states.end(), r.sample_v[iu].data(),
+                              r.sample_v[iu].data() + r.sample_v[iu].size());
+      }
       d.status = CaseStatus::completed;
     }
   } catch (const std::exception& e) {
     d.status = CaseStatus::failed;
     d.message = e.what();
     d.state.clear();
+    d.cycle_t.clear();
+    d.cycle_states.clear();
   }
   if (d.y.rows() != d.rows()) d.y.resize(d.rows(), static_cast<long>(channels.size()));
   return d;

@@ -49,6 +49,11 @@ struct RunData {
   /// A converged periodic cycle's start state (every body's q, then v); empty
   /// for a transient run
   std::vector<double> state;
+  /// A converged periodic cycle's states spread over it (about 36, on the
+  /// output samples): cycle_t their times, cycle_states their q then v, one
+  /// state after the other (post/assembled_modes.h linearizes about them);
+  /// empty for a transient run
+  std::vector<double> cycle_t, cycle_states;
   long rows() const { return static_cast<long>(time.size()); }
 };
 

@@ -342,6 +342,8 @@ SweepResult sweep(const Options& opt, const SweepOptions& so) {
   const auto after = Clock::now();
   if (stopped(opt)) res.info.interrupted = true;
   d.natural = campbell_frequencies(s.src, d, so);
+  assembled_campbell(tasks, d, so);
+  write_campbell_csv(fs::path(res.info.out_dir) / "campbell.csv", d);
   write_sweep_h5(opt, d, so);
   plot_sweep(opt, d, so, gnuplot.get());
   res.finish_seconds = since(after);

@@ -2,6 +2,7 @@
 // (sweep_files.cpp, sweep_plots.cpp).
 #pragma once
 
+#include "post/assembled_modes.h"
 #include "post/natural_frequencies.h"
 #include "post/order_spectrum.h"
 #include "study/study_common.h"
@@ -18,7 +19,15 @@ struct SweepData {
   /// per task, per channel: amplitude at each order (empty: no spectrum)
   std::vector<std::vector<std::vector<double>>> amplitude;
   std::vector<NaturalFrequency> natural;  ///< of the scene's bodies
-  std::vector<int> figure_channels;       ///< indices into names
+  /// The assembled system's modes at each periodic point (post/assembled_modes.h)
+  struct Assembled {
+    std::size_t task = 0;
+    double rpm = 0.0;
+    AssembledMode mode;
+  };
+  std::vector<Assembled> assembled;
+  std::string assembled_note;        ///< why points have none ("" when every one has)
+  std::vector<int> figure_channels;  ///< indices into names
 };
 
 /// Order spectra and mean speed of task k (after its run).
@@ -28,6 +37,14 @@ void analyse_task(SweepData& d, const SweepOptions& so, std::size_t k);
 /// up to 1.2 x the highest order at the highest speed; none without a speed.
 std::vector<NaturalFrequency> campbell_frequencies(const SceneSource& src, const SweepData& d,
                                                    const SweepOptions& so);
+
+/// The modes of the assembled system linearized about each completed periodic
+/// task's cycle (RunData::cycle_states), up to 1.2 x the highest order at the
+/// highest speed, into d.assembled (and d.assembled_note).
+void assembled_campbell(const std::vector<TaskSpec>& tasks, SweepData& d, const SweepOptions& so);
+
+/// campbell.csv: speed [rpm], frequency_hz, label, where, damping_ratio, point, case_index.
+void write_campbell_csv(const fs::path& path, const SweepData& d);
 
 /// Task k's file: its key (the point and case, readable), its fingerprint
 /// (task_fingerprint: what it computes), status, channels and statistics.

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "io/scene.h"
+#include "solver/system.h"
 #include "study/report.h"
 #include "study/sweep_detail.h"
 
@@ -95,6 +96,11 @@ void write_task_file(const fs::path& path, const SweepData& d, std::size_t k,
     // a periodic point's cycle start state: the next point's warm start on --resume
     if (!t.data.state.empty())
       h5::write_doubles(f, "state", {t.data.state.size()}, t.data.state.data(), false);
+    if (!t.data.cycle_t.empty()) {
+      h5::write_doubles(f, "cycle_t", {t.data.cycle_t.size()}, t.data.cycle_t.data(), false);
+      h5::write_doubles(f, "cycle_states", {t.data.cycle_states.size()}, t.data.cycle_states.data(),
+                        false);
+    }
     if (!t.start.empty()) h5::write_attribute(f, "start", t.start);
   });
 }
@@ -132,6 +138,10 @@ bool read_task_file(const fs::path& path, SweepData& d, std::size_t k, const std
     for (long long b : bytes) raw += static_cast<char>(static_cast<unsigned char>(b));
     run.stats = stats_from_bytes(raw);  // throws on a wrong size: the task runs again
     if (h5::exists(f, "state")) run.state = h5::read_doubles(f, "state", dims);
+    if (h5::exists(f, "cycle_t")) {
+      run.cycle_t = h5::read_doubles(f, "cycle_t", dims);
+      run.cycle_states = h5::read_doubles(f, "cycle_states", dims);
+    }
     SweepTask& t = d.res.tasks[k];
     if (h5::has_attribute(f, "start")) t.start = h5::read_string_attribute(f, "start");
     t.data = std::move(run);
@@ -155,6 +165,56 @@ std::vector<NaturalFrequency> campbell_frequencies(const SceneSource& src, const
   if (!(top_rpm > 0.0)) return {};
   const Scene scene = src.parse();
   return natural_frequencies(*scene.model, 1.2 * so.max_order * top_rpm / 60.0);
+}
+
+void assembled_campbell(const std::vector<TaskSpec>& tasks, SweepData& d, const SweepOptions& so) {
+  d.assembled.clear();
+  d.assembled_note.clear();
+  double top_rpm = 0.0;
+  for (const auto& t : d.res.tasks)
+    if (std::isfinite(t.rpm)) top_rpm = std::max(top_rpm, std::abs(t.rpm));
+  if (!(top_rpm > 0.0)) return;
+  const double f_max = 1.2 * so.max_order * top_rpm / 60.0;
+  std::vector<std::string> notes;
+  for (std::size_t k = 0; k < d.res.tasks.size() && k < tasks.size(); ++k) {
+    const SweepTask& t = d.res.tasks[k];
+    if (t.result.status != CaseStatus::completed) continue;
+    if (t.data.cycle_t.empty()) {
+      notes.push_back("task " + std::to_string(k) +
+                      ": no steady cycle to linearize about (--periodic gives one)");
+      continue;
+    }
+    try {
+      const Scene scene = tasks[k].src.parse();
+      System sys(*scene.model);
+      const std::size_t m = t.data.cycle_t.size(), w = t.data.cycle_states.size() / m;
+      std::vector<Vec> qv;
+      for (std::size_t i = 0; i < m; ++i)
+        qv.push_back(Eigen::Map<const Vec>(t.data.cycle_states.data() + i * w,
+                                           static_cast<Eigen::Index>(w)));
+      const AssembledModes am = assembled_modes(sys, *scene.model, t.data.cycle_t, qv, f_max);
+      if (!am.reason.empty()) notes.push_back("task " + std::to_string(k) + ": " + am.reason);
+      for (const AssembledMode& mode : am.modes) d.assembled.push_back({k, t.rpm, mode});
+    } catch (const std::exception& e) {
+      notes.push_back("task " + std::to_string(k) + ": " + e.what());
+    }
+  }
+  if (!notes.empty())
+    d.assembled_note =
+        notes.front() +
+        (notes.size() > 1 ? " (and " + std::to_string(notes.size() - 1) + " more)" : "");
+}
+
+void write_campbell_csv(const fs::path& path, const SweepData& d) {
+  std::ostringstream os;
+  os << "speed,frequency_hz,label,where,damping_ratio,point,case_index\n";
+  for (const auto& a : d.assembled) {
+    const SweepTask& t = d.res.tasks[a.task];
+    os << gnum(a.rpm, 8) << "," << gnum(a.mode.hz, 8) << "," << csv_field(a.mode.label) << ","
+       << a.mode.where << "," << gnum(a.mode.damping_ratio, 6) << "," << t.point << ","
+       << t.case_index << "\n";
+  }
+  write_file_atomic(path, os.str());
 }
 
 // --- tables ------------------------------------------------------------------
@@ -312,6 +372,26 @@ void write_sweep_h5(const Options& opt, SweepData& d, const SweepOptions& so) {
     h5::write_strings(cb, "body", body);
     h5::write_strings(cb, "kind", kind);
     h5::write_strings(cb, "direction", dir_);
+    // the assembled system's modes per periodic point (post/assembled_modes.h)
+    h5::Handle as = h5::create_group(f, "assembled");
+    std::vector<double> arpm, ahz, azeta;
+    std::vector<long long> atask;
+    std::vector<std::string> alabel, awhere;
+    for (const auto& a : d.assembled) {
+      arpm.push_back(a.rpm);
+      ahz.push_back(a.mode.hz);
+      azeta.push_back(a.mode.damping_ratio);
+      atask.push_back(static_cast<long long>(a.task));
+      alabel.push_back(a.mode.label);
+      awhere.push_back(a.mode.where);
+    }
+    h5::write_doubles(as, "speed", {arpm.size()}, arpm.data());
+    h5::write_doubles(as, "frequency", {ahz.size()}, ahz.data());
+    h5::write_doubles(as, "damping_ratio", {azeta.size()}, azeta.data());
+    h5::write_int64s(as, "task", {atask.size()}, atask.data());
+    h5::write_strings(as, "label", alabel);
+    h5::write_strings(as, "where", awhere);
+    h5::write_attribute(as, "note", d.assembled_note);
   });
 }
 

@@ -228,7 +228,11 @@ std::string pack_run(const RunData& d) {
   w.raw(d.wall);
   // a periodic cycle's start state only: a transient run's bytes are those
   // it had before
-  if (!d.state.empty()) w.reals(d.state.data(), d.state.size());
+  if (!d.state.empty()) {
+    w.reals(d.state.data(), d.state.size());
+    w.reals(d.cycle_t.data(), d.cycle_t.size());
+    w.reals(d.cycle_states.data(), d.cycle_states.size());
+  }
   return w.take();
 }
 
@@ -249,7 +253,13 @@ RunData unpack_run(const std::string& bytes) {
   d.y = Eigen::Map<const Mat>(y.data(), rows, cols);
   d.stats = stats_from_bytes(r.text());
   d.wall = r.raw<double>();
-  if (!r.at_end()) d.state = r.reals();
+  if (!r.at_end()) {
+    d.state = r.reals();
+    d.cycle_t = r.reals();
+    d.cycle_states = r.reals();
+    if (d.cycle_t.empty() ? !d.cycle_states.empty() : d.cycle_states.size() % d.cycle_t.size() != 0)
+      throw std::runtime_error("malformed cycle states");
+  }
   r.finish();
   return d;
 }

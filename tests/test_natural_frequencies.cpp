@@ -9,7 +9,9 @@
 
 #include "io/body_file.h"
 #include "io/scene.h"
+#include "post/assembled_modes.h"
 #include "post/natural_frequencies.h"
+#include "solver/system.h"
 
 using namespace evas;
 
@@ -206,4 +208,47 @@ TEST(NaturalFrequencies, ValidationEngine) {
   ASSERT_EQ(scene_hz.size(), file_hz.size());
   for (std::size_t i = 0; i < file_hz.size(); ++i)
     EXPECT_NEAR(scene_hz[i], file_hz[i], 1e-9 * file_hz[i]);
+}
+
+// The assembled system's modes (post/assembled_modes.h) of the same block on
+// its four mounts, from the linearized equations of the whole model (the
+// truss's elastic modes included), against the rigid engine of mount_modes():
+// six modes labelled "mount", their undamped frequencies |lambda| / (2 pi)
+// within 0.5 % (the truss's elastic compliance lowers them a little), and the
+// vertical one's damping ratio that of a single degree of freedom,
+// zeta = c / (2 sqrt(k m)) with k = 4 k_z, c = 4 x 500 N s/m.
+TEST(NaturalFrequencies, AssembledModesOfTheBlockOnItsMounts) {
+  const Scene scene = parse_scene(scene_text(""), "mounts.yaml");
+  const Model& model = *scene.model;
+  const MountModes mm = mount_modes(model);
+  ASSERT_EQ(mm.hz.size(), 6u);
+  System sys(*scene.model);
+  Vec q, v;
+  sys.initial_state(q, v);
+  Vec qv(2 * q.size());
+  qv << q, v;
+  const AssembledModes am = assembled_modes(sys, model, {0.0}, {qv}, 200.0);
+  ASSERT_TRUE(am.reason.empty()) << am.reason;
+  std::vector<const AssembledMode*> mount;
+  for (const AssembledMode& m : am.modes)
+    if (m.where == "mount") mount.push_back(&m);
+  ASSERT_EQ(mount.size(), 6u);
+  for (std::size_t i = 0; i < 6; ++i) {
+    const double zeta = mount[i]->damping_ratio;
+    const double undamped = mount[i]->hz / std::sqrt(1.0 - zeta * zeta);
+    EXPECT_NEAR(undamped / mm.hz[i], 1.0, 5e-3) << mount[i]->label;
+    EXPECT_EQ(mount[i]->label.rfind("mount: block rigid ", 0), 0u) << mount[i]->label;
+  }
+  const double m = mm.mass, zeta_z = 4.0 * 500.0 / (2.0 * std::sqrt(4.0 * kz * m));
+  bool found = false;
+  for (const AssembledMode* a : mount)
+    if (a->label.find("rigid tz") != std::string::npos) {
+      EXPECT_NEAR(a->damping_ratio / zeta_z, 1.0, 1e-2) << a->label;
+      found = true;
+    }
+  EXPECT_TRUE(found);
+  // a scene it cannot linearize says why
+  const AssembledModes none = assembled_modes(sys, model, {}, {}, 200.0);
+  EXPECT_TRUE(none.modes.empty());
+  EXPECT_FALSE(none.reason.empty());
 }

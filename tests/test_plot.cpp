@@ -11,6 +11,7 @@
 #include "io/results.h"
 #include "plot/gnuplot.h"
 #include "plot/gnuplot_process.h"
+#include "post/radiation.h"
 #include "run_faults_support.h"
 
 namespace {
@@ -144,7 +145,8 @@ TEST(Plot, FiguresTheFileCannotGiveAreErrorsNamingWhatIsThere) {
             "journal bearings in this file: main1, main2, main3, main4, main5"},
            {{"waterfall", r}, "a waterfall is drawn from a sweep over operating points"},
            {{"pie", r},
-            "unknown kind 'pie' (known: channels, polar, orbit, film, order, spectrum, erp, "
+            "unknown kind 'pie' (known: channels, polar, orbit, film, order, order-track, "
+            "spectrum, erp, "
             "waterfall, campbell, order-cuts, work-precision)"},
            {{"channels", r, "--channel", "main9.*"},
             "no channel matches 'main9.*'; channels here: crank_angle"},
@@ -209,7 +211,55 @@ TEST(Plot, ErpOfTheBlockSideWallsFromItsComponents) {
   std::ifstream bands(tmp.path() / "bands.csv");
   std::string header;
   std::getline(bands, header);
-  EXPECT_EQ(header, "centre[Hz],lower[Hz],upper[Hz],erp[W],level[dB re 1 pW],bins");
+  EXPECT_EQ(header,
+            "centre[Hz],lower[Hz],upper[Hz],erp[W],level[dB re 1 pW],bins,erp_elastic[W],"
+            "level_elastic[dB re 1 pW],level_elastic_A[dB(A) re 1 pW]");
+  // the elastic part from the components e_k is the channel skin.erp_elastic,
+  // and below the whole (the block rocks on its mounts)
+  const std::string key =
+      "elastic part (the body's deformation; the rigid-body motion left out): mean ";
+  const auto at_e = s.log.find(key);
+  ASSERT_NE(at_e, std::string::npos) << s.log;
+  const double mean_e = std::stod(s.log.substr(at_e + key.size()));
+  int erp_e = -1;
+  for (std::size_t i = 0; i < d.names.size(); ++i)
+    if (d.names[i] == "skin.erp_elastic") erp_e = static_cast<int>(i);
+  ASSERT_GE(erp_e, 0);
+  double sum_e = 0.0;
+  for (std::size_t k = 0; k < d.time.size(); ++k)
+    if (d.time[k] >= 0.02) sum_e += d.values(static_cast<Eigen::Index>(k), erp_e);
+  EXPECT_NEAR(mean_e, sum_e / n, 1e-5 * mean_e);
+  EXPECT_LT(mean_e, mean);
+  // --radiation: sigma and the radiated power sigma * elastic per band
+  const Outcome r2 =
+      run_evas({"spectrum", r, "--erp", "skin", "--from", "0.02", "--bands", "third-octave",
+                "--radiation", "piston:0.3", "--csv", (tmp.path() / "radiated.csv").string()},
+               tmp.path() / "radiated.log");
+  ASSERT_EQ(r2.code, 0) << r2.log;
+  std::ifstream rad(tmp.path() / "radiated.csv");
+  std::getline(rad, header);
+  EXPECT_NE(header.find(",sigma,radiated[W],level_radiated[dB re 1 pW],"
+                        "level_radiated_A[dB(A) re 1 pW]"),
+            std::string::npos)
+      << header;
+  std::string line;
+  int rows = 0;
+  while (std::getline(rad, line)) {
+    std::vector<std::string> f;
+    std::stringstream ss(line);
+    for (std::string x; std::getline(ss, x, ',');) f.push_back(x);
+    ASSERT_GE(f.size(), 11u) << line;
+    const double centre = std::stod(f[0]), elastic = std::stod(f[6]), sigma = std::stod(f[9]),
+                 radiated = std::stod(f[10]);
+    EXPECT_NEAR(sigma, evas::piston_radiation_efficiency(centre, 0.3), 1e-5 * sigma) << line;
+    EXPECT_NEAR(radiated, sigma * elastic, 1e-5 * radiated + 1e-300) << line;
+    ++rows;
+  }
+  EXPECT_GT(rows, 20);
+  EXPECT_EQ(run_evas({"spectrum", r, "--channel", "skin.erp", "--radiation", "piston:0.3"},
+                     tmp.path() / "r3.log")
+                .code,
+            1);
   ASSERT_EQ(plot({"erp", r, "--channel", "skin", "--from", "0.02"}, tmp.path() / "erp.png").code,
             0);
   EXPECT_FALSE(data_block(tmp.path() / "erp.dat", 1).empty());

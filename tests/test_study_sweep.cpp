@@ -330,7 +330,8 @@ TEST(StudySweep, BadSweepsAreInputErrors) {
       {{"--sweep", "crank.lof.speed=0"},
        "the cylinder fires (pressure_file) but the crank turns "
        "at 0 rad/s"},
-      {{"--window", "all", "--sweep", "crank.lof.speed=100"}, "do not apply to a sweep"},
+      {{"--window", "all", "--sweep", "crank.lof.speed=100"}, "does not apply to a sweep"},
+      {{"--norm", "rms", "--sweep", "crank.lof.speed=100"}, "--norm does not apply to a sweep"},
       {{"--orders", "1.25", "--sweep", "crank.lof.speed=100"}, "not a multiple of 0.5"},
       {{}, "missing --sweep"},
   };

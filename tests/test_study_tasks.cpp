@@ -206,9 +206,17 @@ TEST(StudySweepGrammar, ListsAndRanges) {
   EXPECT_EQ(a.key, "crank.lof.speed");
   ASSERT_EQ(a.values.size(), 8u);
   EXPECT_EQ(a.values.front(), "157.08");
-  EXPECT_EQ(std::stod(a.values[3]), std::fma(3.0, 52.36, 157.08));  // rounded once
-  EXPECT_EQ(std::stod(a.values.back()), std::fma(7.0, 52.36, 157.08));
+  // A + k S rounded once (fma), written with the decimals A and S have: the
+  // value the user meant, within 1e-9 S of the double
+  for (std::size_t k = 0; k < a.values.size(); ++k)
+    EXPECT_NEAR(std::stod(a.values[k]), std::fma(static_cast<double>(k), 52.36, 157.08),
+                1e-9 * 52.36);
   EXPECT_EQ(a.values[3], "314.16");
+  EXPECT_EQ(a.values.back(), "523.6");
+  // not 157.07999999999998 (the nearest double to 104.72 + 52.36 printed in full)
+  EXPECT_EQ(parse_sweep("crank.lof.speed=104.72..418.88:52.36").values[1], "157.08");
+  // an exponent gives no decimals to go by: the shortest exact text
+  EXPECT_EQ(parse_sweep("x.y=1e-1..3e-1:1e-1").values.size(), 3u);
   const ParamSweep b = parse_sweep("main*.clearance=1e-5..1e-4/3,2e-4,[1, 2]");
   EXPECT_EQ(b.values,
             (std::vector<std::string>{"1e-5", "3.16227766e-05", "1e-4", "2e-4", "[1, 2]"}));

@@ -153,9 +153,10 @@ TEST(SurfaceErp, NormalVelocityAndErpByHand) {
   EXPECT_NEAR(out[1], std::sqrt(erp / (rho_c * A)), 1e-14);
   EXPECT_NEAR(out[2], erp, 1e-12 * erp);
   double sum = 0.0;
-  for (int k = 0; k < sr.components(); ++k) sum += out[3 + k] * out[3 + k];
+  for (int k = 0; k < sr.components(); ++k) sum += out[5 + k] * out[5 + k];
   EXPECT_NEAR(sum, erp, 1e-12 * erp);
-  for (int i = 0; i < 3; ++i) EXPECT_NEAR(out[3 + sr.components() + i], vn[i], 1e-15);
+  for (int i = 0; i < 3; ++i)
+    EXPECT_NEAR(out[5 + sr.components() + sr.elastic_components() + i], vn[i], 1e-15);
   // a rigid rotation of the frame about z at 5 rad/s and a drift along y:
   // v_n,i = n_i . (v + w x s_i)
   LofState turning;
@@ -165,8 +166,68 @@ TEST(SurfaceErp, NormalVelocityAndErpByHand) {
   sr.evaluate(turning, &still, out.data());
   for (int i = 0; i < 3; ++i) {
     const Vec3 s = b.s.row(i).transpose(), n = set.normal.row(i).transpose();
-    EXPECT_NEAR(out[3 + sr.components() + i], n.dot(turning.v_GL + turning.w_GL_G.cross(s)), 1e-15);
+    EXPECT_NEAR(out[5 + sr.components() + sr.elastic_components() + i],
+                n.dot(turning.v_GL + turning.w_GL_G.cross(s)), 1e-15);
   }
+}
+
+// The rigid/elastic split (model/surface.h): a body moving rigidly (its
+// frame, and its explicit rigid modes) radiates nothing in the elastic ERP and
+// all of its ERP in the rigid one; its deformation alone the other way round.
+TEST(SurfaceErp, RigidBodyMotionRadiatesNoElasticPower) {
+  ModalBody b;
+  b.name = "block";
+  b.s.resize(3, 3);
+  b.s << 1, 0, 0, 0, 1, 0, 0, 0, 1;
+  b.node_ids = {1, 2, 3};
+  // mode 0: a rigid translation along y; mode 1: a deformation
+  b.modes.resize(9, 2);
+  for (int i = 0; i < 3; ++i) {
+    b.modes.block<3, 1>(3 * i, 0) = Vec3(0, 0.5, 0);
+    b.modes.block<3, 1>(3 * i, 1) = Vec3(i, 2, -1);
+  }
+  b.kinds = {ModeKind::Rigid, ModeKind::Elastic};
+  SurfaceSet set;
+  set.nodes = {1, 2, 3};
+  set.area = Vec3(0.1, 0.2, 0.3);
+  set.normal.resize(3, 3);
+  set.normal << 0, 1, 0, 0, 0, 1, 1, 0, 0;
+  SurfaceRadiation sr(b, set, 413.0, false, "test");
+  ASSERT_EQ(sr.values(), 5 + sr.components() + sr.elastic_components());
+  std::vector<double> out(static_cast<std::size_t>(sr.values()));
+  auto elastic_sum = [&] {
+    double e = 0.0;
+    for (int k = 0; k < sr.elastic_components(); ++k) {
+      const double c = out[static_cast<std::size_t>(5 + sr.components() + k)];
+      e += c * c;
+    }
+    return e;
+  };
+  // rigid: the frame turns and drifts, the rigid mode moves, the elastic one not
+  LofState moving;
+  moving.w_GL_G = Vec3(0.3, -2, 5);
+  moving.v_GL = Vec3(0.1, 0.3, -0.2);
+  const double rigid_only[2] = {1.7, 0.0};
+  sr.evaluate(moving, rigid_only, out.data());
+  ASSERT_GT(out[2], 0.0);
+  EXPECT_EQ(out[3], 0.0);                       // erp_elastic
+  EXPECT_NEAR(out[4], out[2], 1e-14 * out[2]);  // erp_rigid = erp
+  EXPECT_EQ(elastic_sum(), 0.0);
+  // elastic: the frame still, the deformation only
+  const double elastic_only[2] = {0.0, 0.7};
+  sr.evaluate(LofState{}, elastic_only, out.data());
+  ASSERT_GT(out[2], 0.0);
+  EXPECT_NEAR(out[3], out[2], 1e-14 * out[2]);
+  EXPECT_EQ(out[4], 0.0);
+  EXPECT_NEAR(elastic_sum(), out[3], 1e-14 * out[3]);
+  // both: each part is what it is alone; their sum differs by the cross term
+  const double both[2] = {1.7, 0.7};
+  sr.evaluate(moving, both, out.data());
+  std::vector<double> alone(out.size());
+  sr.evaluate(moving, rigid_only, alone.data());
+  EXPECT_NEAR(out[4], alone[4], 1e-14 * alone[4]);
+  sr.evaluate(LofState{}, elastic_only, alone.data());
+  EXPECT_NEAR(out[3], alone[3], 1e-14 * alone[3]);
 }
 
 TEST(SurfaceErp, MeanNormalVelocityMatchesDifferencesOfTheModalDisplacement) {
