@@ -439,4 +439,25 @@ PressureTable synthetic_diesel_cycle(const DieselCycle& c, double* used_heat) {
   return PressureTable(std::move(a), std::move(p), "synthetic diesel cycle");
 }
 
+DieselCycle diesel_cycle_at(const DieselCycle& ref, double ref_rpm, double ref_heat, double rpm,
+                            double load) {
+  if (!(rpm > 0.0 && std::isfinite(rpm)) || !(ref_rpm > 0.0))
+    throw InputError("diesel cycle: the speed must be > 0 rpm, got " + std::to_string(rpm));
+  if (!(load > 0.0 && load <= 1.5))
+    throw InputError("diesel cycle: the load must be in (0, 1.5] (a fraction of full load), got " +
+                     std::to_string(load));
+  DieselCycle c = ref;
+  const double r = rpm / ref_rpm;
+  c.premixed_duration_deg = ref.premixed_duration_deg * std::sqrt(r);
+  c.diffusion_duration_deg = ref.diffusion_duration_deg * std::sqrt(r);
+  c.diffusion_m = ref.diffusion_m * std::pow(1.0 / r, 0.3);
+  c.heat_release = load * ref_heat;
+  c.target_peak = 0.0;
+  constexpr double ambient = 1.0e5;
+  const double boost = std::min(1.0, r * r);
+  c.p_intake = ambient + (ref.p_intake - ambient) * boost;
+  c.p_exhaust = c.p_intake + (ref.p_exhaust - ref.p_intake) * boost;
+  return c;
+}
+
 }  // namespace evas

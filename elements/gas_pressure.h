@@ -109,4 +109,26 @@ struct DieselCycle {
 /// receives the heat release used [J].
 PressureTable synthetic_diesel_cycle(const DieselCycle& c, double* used_heat = nullptr);
 
+/// The cycle `ref` (calibrated at `ref_rpm` and full load, its heat release
+/// `ref_heat` [J], e.g. what synthetic_diesel_cycle found for its target peak)
+/// moved to speed `rpm` and load `load` (fuel per cycle as a fraction of full
+/// load, 0 < load <= 1.5):
+///  - combustion durations (premixed and diffusion) in crank degrees scale
+///    with (n / n_ref)^0.5 and the diffusion shape exponent m with
+///    (n_ref / n)^0.3 (Woschni & Anisits, "Experimental investigation and
+///    mathematical presentation of rate of heat release in diesel engines
+///    dependent upon engine operating conditions", SAE 740086, 1974, at equal
+///    air-fuel ratio and ignition delay);
+///  - heat release per cycle = load x ref_heat (a flat full-load torque curve:
+///    the same fuel per cycle at every speed) and no target peak;
+///  - boost pressure above ambient (1 bar) scales with (n / n_ref)^2 up to
+///    `ref`'s at n_ref and stays there above it (a turbocharger with
+///    wastegate), the exhaust back pressure keeping its excess over the boost
+///    in proportion; the start of combustion stays at ref.soc_deg (an
+///    injection map that holds it). These last two are assumptions of this
+///    model, not of the paper.
+/// Throws InputError for rpm <= 0 or a load outside (0, 1.5].
+DieselCycle diesel_cycle_at(const DieselCycle& ref, double ref_rpm, double ref_heat, double rpm,
+                            double load);
+
 }  // namespace evas

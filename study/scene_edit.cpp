@@ -32,8 +32,10 @@ void set_path(YAML::Node item, const std::vector<std::string>& path, const std::
   node[path.back()] = YAML::Load(value);
   // keys that stand for each other: setting one replaces the other, so that
   // `--param crank.lof.speed_profile=[[0, 104.7], [2, 418.9]]` turns a constant
-  // speed into a run-up (and `...speed=...` a run-up into a constant speed)
-  static const std::pair<const char*, const char*> alternatives[] = {{"speed", "speed_profile"}};
+  // speed into a run-up (and `...speed=...` a run-up into a constant speed), and
+  // `--param 'cyl*.pressure_map=MAP'` a piston's one table into a map over speed
+  static const std::pair<const char*, const char*> alternatives[] = {
+      {"speed", "speed_profile"}, {"pressure_file", "pressure_map"}};
   for (const auto& [a, b] : alternatives) {
     if (path.back() == a && node[b]) node.remove(b);
     if (path.back() == b && node[a]) node.remove(a);

@@ -22,6 +22,8 @@ SweepFigureData figure_data(const SweepData& d, const SweepOptions& so) {
   f.orders = d.orders;
   f.amplitude = d.amplitude;
   f.natural = d.natural;
+  for (const auto& a : d.assembled)
+    f.assembled.push_back({a.rpm, a.mode.hz, a.mode.damping_ratio, a.mode.where, a.mode.label});
   f.cycles = so.cycles;
   f.max_order = so.max_order;
   return f;

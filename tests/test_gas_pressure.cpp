@@ -9,6 +9,7 @@
 #include <random>
 
 #include "elements/gas_pressure.h"
+#include "elements/pressure_map.h"
 
 using namespace evas;
 
@@ -218,6 +219,47 @@ TEST(GasPressure, SyntheticDieselCycle) {
   for (double x = 0; x < 720; x += 0.37)
     worst = std::max(worst, std::abs(file(x * kRad) - t(x * kRad)));
   EXPECT_LT(worst, 1.0);  // Pa (file written with 1e-6 bar resolution)
+}
+
+// The cycle moved over speed and load (diesel_cycle_at): at the calibration
+// point it is the calibrated cycle itself; the Wiebe durations scale with
+// (n / n_ref)^0.5 and the diffusion exponent with (n_ref / n)^0.3 (Woschni &
+// Anisits, SAE 740086); boost follows (n / n_ref)^2 up to n_ref; half the fuel
+// gives a lower peak over the same compression. The committed map
+// (validation/data/pressure_map, evas_pressure --map) is these curves, and
+// PressureMap reads it.
+TEST(GasPressure, DieselCycleOverSpeedAndLoad) {
+  const DieselCycle ref;
+  double Q = 0;
+  const PressureTable t = synthetic_diesel_cycle(ref, &Q);
+  const PressureTable same = synthetic_diesel_cycle(diesel_cycle_at(ref, 3000, Q, 3000, 1.0));
+  ASSERT_EQ(same.pressures().size(), t.pressures().size());
+  for (std::size_t k = 0; k < t.pressures().size(); ++k)
+    EXPECT_NEAR(same.pressures()[k], t.pressures()[k], 1e-9 * t.pressures()[k]);
+  const DieselCycle slow = diesel_cycle_at(ref, 3000, Q, 1000, 1.0);
+  EXPECT_NEAR(slow.diffusion_duration_deg, ref.diffusion_duration_deg * std::sqrt(1.0 / 3.0),
+              1e-12);
+  EXPECT_NEAR(slow.premixed_duration_deg, ref.premixed_duration_deg * std::sqrt(1.0 / 3.0), 1e-12);
+  EXPECT_NEAR(slow.diffusion_m, ref.diffusion_m * std::pow(3.0, 0.3), 1e-12);
+  EXPECT_NEAR(slow.p_intake, 1e5 + (ref.p_intake - 1e5) / 9.0, 1e-6);
+  EXPECT_EQ(slow.heat_release, Q);
+  EXPECT_EQ(diesel_cycle_at(ref, 3000, Q, 4000, 1.0).p_intake, ref.p_intake);  // wastegate
+  const PressureTable half = synthetic_diesel_cycle(diesel_cycle_at(ref, 3000, Q, 3000, 0.5));
+  EXPECT_LT(half.max_pressure(), 0.9 * t.max_pressure());
+  EXPECT_NEAR(half(-60 * kRad), t(-60 * kRad), 1e-9 * t(-60 * kRad));  // same compression
+  EXPECT_THROW(diesel_cycle_at(ref, 3000, Q, 0.0, 1.0), InputError);
+  EXPECT_THROW(diesel_cycle_at(ref, 3000, Q, 3000, 0.0), InputError);
+  // the committed map
+  const std::string dir = std::string(EVAS_SOURCE_DIR) + "/validation/data/pressure_map";
+  const PressureMap map = PressureMap::read(dir + "/map.txt");
+  for (double rpm : {1000.0, 2500.0, 4000.0}) {
+    const PressureTable want = synthetic_diesel_cycle(diesel_cycle_at(ref, 3000, Q, rpm, 1.0));
+    const double w = rpm * M_PI / 30.0;
+    double worst = 0;
+    for (double x = 0; x < 720; x += 0.37)
+      worst = std::max(worst, std::abs(map(x * kRad, w) - want(x * kRad)));
+    EXPECT_LT(worst, 1.0) << rpm << " rpm";  // Pa (written with 1e-6 bar resolution)
+  }
 }
 
 // A table of equal spacing is entered by division (gas_pressure.cpp, operator()),
