@@ -16,6 +16,7 @@
 #include "model/types.h"
 #include "post/erp_spectrum.h"
 #include "post/order_spectrum.h"
+#include "post/order_tracking.h"
 #include "post/radiation.h"
 #include "post/time_spectrum.h"
 
@@ -355,8 +356,22 @@ int cmd_spectrum(const std::vector<std::string>& args) {
   if (vm.count("bands") && bands != "third-octave")
     throw InputError("--bands '" + bands + "': the bands known are third-octave");
   const std::string path = vm["results"].as<std::string>();
+  // a spectrum over time of a run-up: refused, naming what to use instead
+  auto refuse_runup = [&](const ResultsData& d) {
+    const auto it = std::find(d.names.begin(), d.names.end(), "crank_angle");
+    if (it == d.names.end()) return;
+    const std::vector<double> th = column(d, static_cast<int>(it - d.names.begin()));
+    const std::string runup = runup_text(d.time, th);
+    if (!runup.empty())
+      throw InputError(path + ": a run-up (" + runup +
+                       "): a spectrum over time needs a constant speed (a run-up's crank-angle "
+                       "grid is not uniform in time); evas plot order-track draws each order "
+                       "against speed, evas spectrum --channel NAME (no --time) one cycle's "
+                       "orders");
+  };
   if (vm.count("erp")) {
     const ResultsData d = read_results(path);
+    refuse_runup(d);
     erp_mode(d, path, vm["erp"].as<std::string>(), t, segment, max_f, bands,
              vm.count("csv") ? vm["csv"].as<std::string>() : "", rad ? &*rad : nullptr);
     return 0;
@@ -369,10 +384,12 @@ int cmd_spectrum(const std::vector<std::string>& args) {
   if (ic < 0)
     throw InputError(path + ": no channel '" + name + "' (" + nearest_text(name, d.names) + ")");
   const std::string csv = vm.count("csv") ? vm["csv"].as<std::string>() : "";
-  if (over_time)
+  if (over_time) {
+    refuse_runup(d);
     time_mode(d, ic, t, segment, max_f, bands, csv);
-  else
+  } else {
     order_mode(d, path, ic, cycles, cycle, max_order, csv);
+  }
   return 0;
 }
 

@@ -13,6 +13,7 @@
 
 #include "apps/commands.h"
 #include "apps/mpi_runner.h"
+#include "apps/study_amplification.h"
 #include "apps/study_checks.h"
 #include "apps/study_problem.h"
 #include "apps/study_set.h"
@@ -78,6 +79,8 @@ const char* kOverview =
     "  budget SCENE          the error budget of the scene's answer: integration,\n"
     "                        start-up, modal basis, element model, each measured with\n"
     "                        its cost; writes budget.csv/.md, budget_sources.csv\n"
+    "  amplification         the one-step amplification of integrators (--case ...): spectral\n"
+    "                        radius, damping and period error against h/T\n"
     "  compare A B           two study tables (CSV files, or folders of them) cell by\n"
     "                        cell with --rtol/--atol: a regression check (exit 3 when\n"
     "                        they differ)\n"
@@ -646,6 +649,7 @@ int cmd_study(const std::vector<std::string>& args) {
   if (sub[0] == "sweep") return sweep(sub);
   if (sub[0] == "budget") return budget(sub);
   if (sub[0] == "compare") return study_compare(sub);
+  if (sub[0] == "amplification") return study_amplification(sub);
   std::cerr << "evas study: unknown sub-command '" << sub[0] << "'\n\n" << kOverview;
   return 1;
 }

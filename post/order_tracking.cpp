@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iomanip>
+#include <sstream>
 #include <string>
 
 #include "model/types.h"
@@ -94,6 +96,21 @@ OrderTrack order_tracking(const std::vector<double>& time, const std::vector<dou
     out.amplitude.push_back(std::move(amp));
   }
   return out;
+}
+
+std::string runup_text(const std::vector<double>& time, const std::vector<double>& theta_deg,
+                       double cycle_deg) {
+  try {
+    if (speed_spread(time, theta_deg, cycle_deg) <= 0.02) return "";
+    const std::vector<double> zero(theta_deg.size(), 0.0);
+    const OrderTrack tr = order_tracking(time, theta_deg, zero, {}, cycle_deg);
+    std::ostringstream os;
+    os << std::setprecision(5) << "the speed runs from " << tr.rpm.front() << " to "
+       << tr.rpm.back() << " rpm over its whole cycles";
+    return os.str();
+  } catch (const InputError&) {
+    return "";
+  }
 }
 
 }  // namespace evas

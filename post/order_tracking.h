@@ -16,6 +16,7 @@
 // left out.
 #pragma once
 
+#include <string>
 #include <vector>
 
 namespace evas {
@@ -43,5 +44,10 @@ OrderTrack order_tracking(const std::vector<double>& time, const std::vector<dou
 /// 0.02.
 double speed_spread(const std::vector<double>& time, const std::vector<double>& theta_deg,
                     double cycle_deg = 720.0);
+
+/// "" at a constant speed (or a grid the tracking cannot read), else "the
+/// speed runs from N1 to N2 rpm over its whole cycles" (first and last cycle).
+std::string runup_text(const std::vector<double>& time, const std::vector<double>& theta_deg,
+                       double cycle_deg = 720.0);
 
 }  // namespace evas

@@ -97,4 +97,17 @@ TEST(OrderTracking, ReportAndPlotsOfARunUp) {
                                tmp.path() / "order.log");
   ASSERT_EQ(ord.code, 0) << ord.log;
   EXPECT_NE(ord.log.find("the cycles pooled run from"), std::string::npos) << ord.log;
+  // a spectrum over time of the run-up is refused, naming what to draw instead
+  for (const char* kind : {"spectrum", "erp"}) {
+    const Outcome sp = run_evas(
+        {"plot", kind, results, "--channel", std::string(kind) == "erp" ? "skin" : "main3.fy",
+         "--out", (tmp.path() / "s.png").string()},
+        tmp.path() / "spectrum.log");
+    EXPECT_EQ(sp.code, 1) << sp.log;
+    EXPECT_NE(sp.log.find("a run-up (the speed runs from"), std::string::npos) << sp.log;
+    EXPECT_NE(sp.log.find("evas plot order-track"), std::string::npos) << sp.log;
+  }
+  const Outcome ts = run_evas({"spectrum", results, "--erp", "skin"}, tmp.path() / "ts.log");
+  EXPECT_EQ(ts.code, 1) << ts.log;
+  EXPECT_NE(ts.log.find("a run-up (the speed runs from"), std::string::npos) << ts.log;
 }

@@ -12,6 +12,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 
 #include "integrators/integrator.h"
 #include "integrators/plugin.h"
@@ -147,6 +148,38 @@ TEST(Plugins, EvasRunsTheDemoWithThePluginAndAgreesWithIda) {
             1);
   EXPECT_NE(read_text(tmp.path / "log").find("nothing.so': no such file"), std::string::npos)
       << read_text(tmp.path / "log");
+}
+
+// `evas study amplification` measures a plug-in as it measures a built-in:
+// HHT-alpha at alpha = -1/3 has the amplification of generalized-alpha at
+// rho_inf = 1/2 to the digit, and at alpha = -0.1 a spectral radius at large
+// h/T of (1 + alpha) / (1 - alpha) = 0.818 (Hilber, Hughes & Taylor 1977).
+TEST(Plugins, AmplificationOfAPlugInIsMeasured) {
+  TempDir tmp;
+  const std::string plug = " --plugin " + std::string(EVAS_HHT_PLUGIN);
+  const std::string log = " > " + (tmp.path / "log").string() + " 2>&1";
+  ASSERT_EQ(shell(kEvas.string() + " study amplification" + plug +
+                  " --case 'hht-alpha alpha=-0.3333333333333333,-0.1' --case "
+                  "'generalized-alpha rho_inf=0.5' --h-over-t 0.01,0.1,1,1000 --no-plot --out " +
+                  (tmp.path / "amp").string() + log),
+            0)
+      << read_text(tmp.path / "log");
+  auto column = [&](int k, int col) {
+    std::istringstream in(
+        read_text(tmp.path / "amp" / ("case" + std::to_string(k)) / "amplification.csv"));
+    std::vector<std::string> out;
+    std::string line;
+    std::getline(in, line);
+    while (std::getline(in, line)) {
+      std::istringstream f(line);
+      std::string x;
+      for (int i = 0; i <= col; ++i) std::getline(f, x, ',');
+      out.push_back(x);
+    }
+    return out;
+  };
+  for (int col : {1, 2, 3}) EXPECT_EQ(column(0, col), column(2, col)) << col;
+  EXPECT_NEAR(std::stod(column(1, 1).back()), 0.9 / 1.1, 1e-3);
 }
 
 // A plug-in with a setting of its own: examples/hht_plugin (HHT-alpha, Hilber,
