@@ -125,20 +125,41 @@ TEST(SurfaceErp, AFaceWithNoSolidBehindItIsRefused) {
   }
 }
 
-TEST(SurfaceErp, NormalVelocityAndErpByHand) {
-  // three nodes, one mode: node i moves with phi_i = (i, 2, -1) per unit q
+namespace {
+
+// Three nodes at the unit points, modes given per node (the same
+// displacement at every node for mode k when `same` says so, else (i, 2, -1)
+// at node i), and the set of the three with areas 0.1, 0.2, 0.3 and normals
+// y, z, x.
+ModalBody three_nodes(const std::vector<bool>& same) {
   ModalBody b;
   b.name = "plate";
   b.s.resize(3, 3);
   b.s << 1, 0, 0, 0, 1, 0, 0, 0, 1;
   b.node_ids = {1, 2, 3};
-  b.modes.resize(9, 1);
-  for (int i = 0; i < 3; ++i) b.modes.block<3, 1>(3 * i, 0) = Vec3(i, 2, -1);
+  b.modes.resize(9, static_cast<Eigen::Index>(same.size()));
+  for (int i = 0; i < 3; ++i)
+    for (std::size_t k = 0; k < same.size(); ++k)
+      b.modes.block<3, 1>(3 * i, static_cast<Eigen::Index>(k)) =
+          same[k] ? Vec3(0, 0.5, 0) : Vec3(i, 2, -1);
+  return b;
+}
+
+SurfaceSet three_node_set() {
   SurfaceSet set;
   set.nodes = {1, 2, 3};
   set.area = Vec3(0.1, 0.2, 0.3);
   set.normal.resize(3, 3);
   set.normal << 0, 1, 0, 0, 0, 1, 1, 0, 0;
+  return set;
+}
+
+}  // namespace
+
+TEST(SurfaceErp, NormalVelocityAndErpByHand) {
+  // three nodes, one mode: node i moves with phi_i = (i, 2, -1) per unit q
+  const ModalBody b = three_nodes({false});
+  const SurfaceSet set = three_node_set();
   const double rho_c = 413.0;
   SurfaceRadiation sr(b, set, rho_c, true, "test");
   const double qdot = 0.7;
@@ -175,23 +196,10 @@ TEST(SurfaceErp, NormalVelocityAndErpByHand) {
 // frame, and its explicit rigid modes) radiates nothing in the elastic ERP and
 // all of its ERP in the rigid one; its deformation alone the other way round.
 TEST(SurfaceErp, RigidBodyMotionRadiatesNoElasticPower) {
-  ModalBody b;
-  b.name = "block";
-  b.s.resize(3, 3);
-  b.s << 1, 0, 0, 0, 1, 0, 0, 0, 1;
-  b.node_ids = {1, 2, 3};
-  // mode 0: a rigid translation along y; mode 1: a deformation
-  b.modes.resize(9, 2);
-  for (int i = 0; i < 3; ++i) {
-    b.modes.block<3, 1>(3 * i, 0) = Vec3(0, 0.5, 0);
-    b.modes.block<3, 1>(3 * i, 1) = Vec3(i, 2, -1);
-  }
+  // mode 0: a rigid translation along y (0.5 at every node); mode 1: a deformation
+  ModalBody b = three_nodes({true, false});
   b.kinds = {ModeKind::Rigid, ModeKind::Elastic};
-  SurfaceSet set;
-  set.nodes = {1, 2, 3};
-  set.area = Vec3(0.1, 0.2, 0.3);
-  set.normal.resize(3, 3);
-  set.normal << 0, 1, 0, 0, 0, 1, 1, 0, 0;
+  const SurfaceSet set = three_node_set();
   SurfaceRadiation sr(b, set, 413.0, false, "test");
   ASSERT_EQ(sr.values(), 5 + sr.components() + sr.elastic_components());
   std::vector<double> out(static_cast<std::size_t>(sr.values()));
