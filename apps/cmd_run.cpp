@@ -9,6 +9,7 @@
 #include "integrators/settings.h"
 #include "run/folder_run.h"
 #include "run/period.h"
+#include "run/stability_note.h"
 #include "run/step_advice.h"
 
 namespace evas::cli {
@@ -77,6 +78,8 @@ int cmd_run(const std::vector<std::string>& args) {
   fo.until_settled = until;
   for (const std::string& w : scene.warnings) std::cerr << "evas run: warning: " << w << "\n";
   if (const std::string w = coarse_step_warning(*scene.model, set); !w.empty())
+    std::cerr << "evas run: warning: " << w << "\n";
+  if (const std::string w = stability_limit_warning(*scene.model, set, scene.t_start); !w.empty())
     std::cerr << "evas run: warning: " << w << "\n";
   if (const std::string w = step_count_warning(set, scene.t_start, scene.t_end); !w.empty())
     std::cerr << "evas run: warning: " << w << "\n";

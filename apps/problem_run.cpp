@@ -10,6 +10,7 @@
 #include "dae/implicit_form.h"
 #include "integrators/implicit_ida.h"
 #include "integrators/implicit_radau.h"
+#include "integrators/settings.h"
 #include "run/run.h"
 #include "study/report.h"
 
@@ -126,18 +127,22 @@ void problem_work_precision(const problems::LibraryProblem& lp, const std::files
     for (const char* f : {"index-3", "index-2", "index-1"})
       family(std::string("radau ") + f, "radau", f, 10, 0.01);
   }
-  for (int k = 0; k < 8 && !lp.implicit(); ++k) {
-    IntegratorSettings s;
-    s.name = "generalized-alpha";
-    s.formulation = "index-3";
-    s.step = lp.t_end / (250.0 * std::pow(2.0, k));
-    s.step_control = StepControl::fixed;
-    s.rtol = 1e-10;
-    s.atol = 1e-12;
-    std::ostringstream label;
-    label << "h " << std::setprecision(3) << s.step;
-    add("generalized-alpha index-3", label.str(), s);
-  }
+  // the index-3 members of the Newmark family at fixed steps: generalized-alpha
+  // (rho_inf 0.8) and HHT-alpha (alpha -0.1, HHT-I3)
+  for (const char* method : {"generalized-alpha", "hht-alpha"})
+    for (int k = 0; k < 8 && !lp.implicit(); ++k) {
+      IntegratorSettings s;
+      s.name = method;
+      if (s.name == "hht-alpha") apply_setting_assignment(s, "alpha=-0.1");
+      s.formulation = "index-3";
+      s.step = lp.t_end / (250.0 * std::pow(2.0, k));
+      s.step_control = StepControl::fixed;
+      s.rtol = 1e-10;
+      s.atol = 1e-12;
+      std::ostringstream label;
+      label << "h " << std::setprecision(3) << s.step;
+      add(std::string(method) + " index-3", label.str(), s);
+    }
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);
   const std::filesystem::path csv = dir / "work_precision.csv";

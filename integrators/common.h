@@ -19,6 +19,10 @@ IntegratorEntry cvode_entry();
 IntegratorEntry generalized_alpha_entry();
 IntegratorEntry linear_acceleration_entry();
 IntegratorEntry radau_entry();
+IntegratorEntry hht_alpha_entry();
+IntegratorEntry newmark_entry();
+IntegratorEntry central_difference_entry();
+IntegratorEntry arkode_entry();
 
 /// A number in six significant digits, for messages (t, h).
 inline std::string g6(double x) {

@@ -20,16 +20,12 @@
 #include <string>
 
 #include "dae/constraint_stats.h"
-#include "dae/penalty.h"
-#include "integrators/common.h"
-#include "integrators/second_order_ls.h"
-#include "integrators/sundials_util.h"
-#include "solver/first_order.h"
+#include "integrators/sundials_ode.h"
 
 namespace evas {
 namespace {
 
-class CvodeIntegrator final : public Integrator {
+class CvodeIntegrator final : public SundialsOdeIntegrator {
  public:
   CvodeIntegrator() = default;
   ~CvodeIntegrator() override { free_memory(); }
@@ -37,65 +33,25 @@ class CvodeIntegrator final : public Integrator {
   CvodeIntegrator& operator=(const CvodeIntegrator&) = delete;
 
   std::string name() const override { return "cvode"; }
-  bool takes_internal_states() const override { return true; }
 
   void init(Problem& p, double t0, const Vec& q0, const Vec& v0,
             const IntegratorSettings& s) override {
     free_memory();
     if (s.method != "bdf" && s.method != "adams")
       throw InputError("cvode: method '" + s.method + "' is unknown (use bdf or adams)");
-    p_ = &p;
-    s_ = s;
-    n_ = p.size();
     newton_ = s.method == "bdf";
-    total_ = IntegratorStats{};
-    form_.reset();
-    penalty_.reset();
-    Problem* model = &p;
-    if (const int m = p.constraint_count(); m > 0) {
-      if (s.formulation != "penalty")
-        throw InputError("cvode: the problem has " + std::to_string(m) +
-                         " constraint equation(s) (first: '" + p.constraint_name(0) +
-                         "') and cvode integrates ODEs only; use ida, or set "
-                         "formulation=penalty");
-      penalty_ = std::make_unique<dae::PenaltyProblem>(p, s.penalty_stiffness, s.penalty_damping);
-      model = penalty_.get();
-    }
-    if (model->has_mass())
-      throw InputError(
-          "cvode: the problem has a mass matrix (M != I), which cvode's explicit form "
-          "v' = -f cannot take; use ida");
-    require_quasi_static_support(*this, *model);       // (its explicit form has no place for them)
-    form_ = std::make_unique<FirstOrderForm>(*model);  // refuses algebraic internal states
-    J_ = form_->rhs_pattern();
-
-    y_.create(form_->size(), ctx_);
-    ytmp_.create(form_->size(), ctx_);
-    set_state(q0, v0);
-    if (form_->internal_count() > 0) {
-      Vec z;
-      model->internal_initial(t0, q0, v0, z);
-      std::copy(z.data(), z.data() + z.size(), y_.data() + 2 * n_);
-      model->set_internal(z.data());
-    }
+    prepare("cvode", p, t0, q0, v0, s);
 
     mem_ = CVodeCreate(newton_ ? CV_BDF : CV_ADAMS, ctx_);
     if (!mem_) throw RunError("cvode: CVodeCreate failed");
-    check(CVodeSetErrHandlerFn(mem_, &CvodeIntegrator::error_cb, this), "CVodeSetErrHandlerFn");
+    void* self = static_cast<SundialsOdeIntegrator*>(this);
+    check(CVodeSetErrHandlerFn(mem_, &SundialsOdeIntegrator::error_cb, self),
+          "CVodeSetErrHandlerFn");
     check(CVodeInit(mem_, &CvodeIntegrator::rhs_cb, t0, y_.get()), "CVodeInit");
     check(CVodeSStolerances(mem_, s.rtol, s.atol), "CVodeSStolerances");
-    check(CVodeSetUserData(mem_, this), "CVodeSetUserData");
+    check(CVodeSetUserData(mem_, self), "CVodeSetUserData");
     if (newton_) {
-      if (s.linear_solver != "second-order") {
-        ls_.create(s.linear_solver, J_, y_.get(), ctx_);
-      } else if (form_->internal_count() > 0) {
-        throw InputError(
-            "cvode: linear_solver second-order needs a problem without internal states (this "
-            "one has " +
-            std::to_string(form_->internal_count()) + "); use klu");
-      } else {
-        ls_.create_second_order(model->jacobian_pattern(), ctx_);
-      }
+      make_linear_solver("cvode");
       check(CVodeSetLinearSolver(mem_, ls_.solver(), ls_.matrix()), "CVodeSetLinearSolver");
       check(CVodeSetJacFn(mem_, &CvodeIntegrator::jacobian_cb), "CVodeSetJacFn");
     } else {
@@ -173,24 +129,6 @@ class CvodeIntegrator final : public Integrator {
   }
 
  private:
-  void set_state(const Vec& q, const Vec& v) {
-    double* y = y_.data();
-    for (int i = 0; i < n_; ++i) {
-      y[i] = q[i];
-      y[n_ + i] = v[i];
-    }
-  }
-
-  void get_state(const double* y, Vec& q, Vec& v) const {
-    q.resize(n_);
-    v.resize(n_);
-    for (int i = 0; i < n_; ++i) {
-      q[i] = y[i];
-      v[i] = y[n_ + i];
-    }
-    if (form_->internal_count() > 0) form_->problem().set_internal(y + 2 * n_);
-  }
-
   double current_time() const {
     double tn = t_;
     CVodeGetCurrentTime(mem_, &tn);
@@ -228,19 +166,9 @@ class CvodeIntegrator final : public Integrator {
 
   [[noreturn]] void fail(const std::string& why) {
     const double tn = current_time();
-    std::string msg = "cvode (" + s_.method + "): " + why + " at t = " + format_number(tn) + " s";
-    if (!last_error_.empty()) msg += " (" + last_error_ + ")";
-    const std::string cb = guard_.take_message();
-    if (!cb.empty())
-      msg += guard_.recoverable > 0 ? "; the model refused " + std::to_string(guard_.recoverable) +
-                                          " trial states (the solver cut the step each time), "
-                                          "last: " +
-                                          cb
-                                    : "; model error: " + cb;
     const double* y = y_.data();
     if (CVodeGetDky(mem_, tn, 0, ytmp_.get()) == CV_SUCCESS) y = ytmp_.data();
-    msg += "; state: " + p_->describe_state(tn, y, y + n_);
-    throw RunError(msg);
+    throw RunError(failure("cvode (" + s_.method + ")", why, tn, y));
   }
 
   void free_memory() {
@@ -251,49 +179,18 @@ class CvodeIntegrator final : public Integrator {
   }
 
   static int rhs_cb(realtype t, N_Vector y, N_Vector yd, void* user) {
-    auto* self = static_cast<CvodeIntegrator*>(user);
-    return self->guard_.run(
-        [&] { self->form_->rhs(t, N_VGetArrayPointer(y), N_VGetArrayPointer(yd)); });
+    return static_cast<CvodeIntegrator*>(static_cast<SundialsOdeIntegrator*>(user))->rhs(t, y, yd);
   }
 
   static int jacobian_cb(realtype t, N_Vector y, N_Vector /*fy*/, SUNMatrix J, void* user, N_Vector,
                          N_Vector, N_Vector) {
-    auto* self = static_cast<CvodeIntegrator*>(user);
-    return self->guard_.run([&] {
-      if (SecondOrderSolver* so = self->ls_.second_order()) {
-        // K, C only: CVODE forms I - gamma J through the matrix's scaleaddi
-        const double* yv = N_VGetArrayPointer(y);
-        self->form_->problem().force_jacobian(t, yv, yv + self->n_, so->K(), so->C());
-        return;
-      }
-      self->form_->rhs_jacobian(t, N_VGetArrayPointer(y), self->J_);
-      self->ls_.copy(self->J_, J);
-    });
+    return static_cast<CvodeIntegrator*>(static_cast<SundialsOdeIntegrator*>(user))
+        ->jacobian(t, y, J);
   }
 
-  static void error_cb(int /*code*/, const char* module, const char* function, char* msg,
-                       void* user) {
-    auto* self = static_cast<CvodeIntegrator*>(user);
-    self->last_error_ = std::string(module) + "/" + function + ": " + msg;
-  }
-
-  // Declaration order matters: the context outlives everything created in it.
-  sundials::Context ctx_;
-  sundials::Vector y_, ytmp_;
-  sundials::LinearSystem ls_;
   sundials::NonlinearSolver nls_;
-  std::unique_ptr<dae::PenaltyProblem> penalty_;  // formulation=penalty
-  std::unique_ptr<FirstOrderForm> form_;
-  SpMat J_;
-  Problem* p_ = nullptr;
-  IntegratorSettings s_;
   bool newton_ = true;
   void* mem_ = nullptr;
-  int n_ = 0;
-  double t_ = 0.0;
-  IntegratorStats total_;
-  sundials::CallbackGuard guard_;
-  std::string last_error_;
 };
 
 }  // namespace

@@ -57,11 +57,13 @@ struct IntegratorSettings {
   /// A Newton convergence failure always forces a fresh evaluation.
   int jacobian_age = 10;
   std::string method = "bdf";  ///< cvode: "bdf" or "adams"
-  double rho_inf = 0.8;        ///< generalized-alpha spectral radius at infinity, [0, 1]
-  double balance_tol = 1e-3;   ///< linear-acceleration: balance error tolerance (0.1 %)
-  int max_iterations = 50;     ///< fixed-point / Newton iterations per step
-  long max_steps = 10000000;   ///< adaptive methods: steps per output interval
-  int max_order = 0;           ///< ida, cvode: largest BDF/Adams order (0 = solver's)
+  /// arkode: the Runge-Kutta table by ARKODE's name (implicit DIRK/ESDIRK or explicit ERK)
+  std::string table = "ARKODE_ESDIRK324L2SA_4_2_3";
+  double rho_inf = 0.8;       ///< generalized-alpha spectral radius at infinity, [0, 1]
+  double balance_tol = 1e-3;  ///< linear-acceleration: balance error tolerance (0.1 %)
+  int max_iterations = 50;    ///< fixed-point / Newton iterations per step
+  long max_steps = 10000000;  ///< adaptive methods: steps per output interval
+  int max_order = 0;          ///< ida, cvode: largest BDF/Adams order (0 = solver's)
   /// ida, cvode: safety factor of the Newton convergence test (IDASetNonlinConvCoef,
   /// CVodeSetNonlinConvCoef); 0 = the solver's (0.33 IDA, 0.1 CVODE)
   double newton_coefficient = 0.0;
@@ -159,6 +161,8 @@ struct IntegratorCapabilities {
   bool declared = false;    ///< false: nothing declared (a plug-in's reads are its own)
   bool adaptive = false;    ///< steps against rtol/atol (always, or with step_control=adaptive)
   bool fixed_step = false;  ///< steps at settings.step (step_control fixed or substep)
+  /// fixed steps only with step_control=fixed; otherwise adaptive (arkode)
+  bool fixed_step_on_request = false;
   /// The constraint formulations it solves in a form of its own (every
   /// integrator also takes constraints as penalty forces).
   std::vector<std::string> formulations;
@@ -166,12 +170,17 @@ struct IntegratorCapabilities {
   std::vector<std::string> reads;
   /// Settings of its own (read as well; their keys need not be in `reads`).
   std::vector<DeclaredSetting> settings;
+  /// A conditionally stable method: the largest h omega at which it is stable
+  /// on the undamped oscillator, for the given settings (infinity when
+  /// unconditionally stable); empty when not known. The run warns of a fixed
+  /// step above it for the model's highest mode (run/step_advice.h).
+  std::function<double(const IntegratorSettings&)> stability_limit;
   bool reads_setting(const std::string& key) const;
 };
 
-/// Names accepted by make_integrator: the built-in five, then those registered.
+/// Names accepted by make_integrator: the built-in ones, then those registered.
 std::vector<std::string> integrator_names();
-/// The built-in five alone (no plug-in).
+/// The built-in ones alone (no plug-in).
 std::vector<std::string> builtin_integrator_names();
 /// Throws InputError when `p` has quasi-static coordinates and `integ` does
 /// not take them (Integrator::takes_quasi_static).

@@ -64,6 +64,9 @@ class LinearAcceleration final : public NewmarkDaeIntegrator {
 IntegratorEntry linear_acceleration_entry() {
   IntegratorCapabilities c = newmark_capabilities();
   c.reads.push_back("balance_tol");
+  c.stability_limit = [](const IntegratorSettings&) {
+    return NewmarkIntegrator::stability_limit(1.0 / 6.0, 0.5);
+  };
   return {"linear-acceleration", [] { return std::make_unique<LinearAcceleration>(); },
           "the paper's linear-acceleration iteration (Newmark beta = 1/6)", c};
 }

@@ -381,6 +381,12 @@ bool NewmarkIntegrator::fail(const std::string& why, double t1, double h, int it
   return false;
 }
 
+double NewmarkIntegrator::stability_limit(double beta, double gamma) {
+  if (gamma < 0.5) return 0.0;
+  if (2.0 * beta >= gamma) return std::numeric_limits<double>::infinity();
+  return 1.0 / std::sqrt(0.5 * gamma - beta);
+}
+
 double NewmarkIntegrator::algebraic_amplification(const Parameters& par) {
   // A coordinate whose position its equation fixes (q_{n+1} given) takes its
   // v and h a from the Newmark relations alone:
@@ -390,6 +396,7 @@ double NewmarkIntegrator::algebraic_amplification(const Parameters& par) {
   // spectral radius (2 + sqrt 3 for linear acceleration, 1 for the
   // trapezoidal rule, 0.8 for generalized-alpha at rho_inf 0.8).
   const double b = par.beta, g = par.gamma;
+  if (!(b > 0.0)) return std::numeric_limits<double>::infinity();  // a explicit in q
   const double b11 = 1.0 - g / b, b12 = (1.0 - g) - g * (0.5 - b) / b;
   const double b21 = -1.0 / b, b22 = -(0.5 - b) / b;
   const double tr = b11 + b22, det = b11 * b22 - b12 * b21, disc = tr * tr - 4.0 * det;

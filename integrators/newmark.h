@@ -110,6 +110,12 @@ class NewmarkIntegrator : public FixedStepIntegrator {
   /// Spectral radius of the Newmark relations' recursion for a coordinate
   /// without inertia (newmark.cpp): at or above 1 quasi-static modes are refused.
   static double algebraic_amplification(const Parameters& par);
+  /// The largest h omega at which Newmark's (beta, gamma) with alpha_m =
+  /// alpha_f = 0 is stable on the undamped oscillator (Hughes, The Finite
+  /// Element Method, section 9.1.2): infinity for 2 beta >= gamma >= 1/2,
+  /// else (gamma/2 - beta)^(-1/2) (2 sqrt 3 for linear acceleration, 2 for
+  /// the central difference); 0 for gamma < 1/2.
+  static double stability_limit(double beta, double gamma);
 
  protected:
   /// The method's parameters from the settings (s_); throws InputError.

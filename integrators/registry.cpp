@@ -1,5 +1,5 @@
 // make_integrator / integrator_names / register_integrator: the integrators by
-// name (integrator.h). The five built-in ones are registered first; plug-ins
+// name (integrator.h). The built-in ones are registered first; plug-ins
 // (integrators/plugin.h) add theirs at load time.
 #include <algorithm>
 #include <mutex>
@@ -19,8 +19,9 @@ using Entry = IntegratorEntry;
 // One line per built-in integrator; each declares itself in its own file.
 const std::vector<Entry>& builtin_entries() {
   static const std::vector<Entry> table = {
-      ida_entry(),   cvode_entry(), generalized_alpha_entry(), linear_acceleration_entry(),
-      radau_entry(),
+      ida_entry(),    cvode_entry(),     generalized_alpha_entry(), linear_acceleration_entry(),
+      radau_entry(),  hht_alpha_entry(), newmark_entry(),           central_difference_entry(),
+      arkode_entry(),
   };
   return table;
 }

@@ -47,6 +47,10 @@ std::string builtin_integrator_list(bool fixed_step_only = false);
 /// True when `name` is a method that declares it can step at settings.step
 /// (generalized-alpha, linear-acceleration, radau: step_control fixed or substep).
 bool has_fixed_step(const std::string& name);
+/// arkode's tables by ARKODE's names (integrators/arkode.cpp): diagonally
+/// implicit (the default first), explicit.
+const std::vector<std::string>& arkode_implicit_tables();
+const std::vector<std::string>& arkode_explicit_tables();
 /// True when `s` names such a method and step_control is not "adaptive".
 bool takes_fixed_steps(const IntegratorSettings& s);
 

@@ -7,6 +7,7 @@
 #include <memory>
 
 #include "dae/consistent.h"
+#include "run/stability_note.h"
 #include "run/stop.h"
 #include "solver/quasi_static.h"
 
@@ -122,6 +123,10 @@ Outcome SceneRun::perform(Integrator& integ, const IntegratorSettings& settings,
   OutputSet& outputs = *out_;
   const auto t0 = Clock::now();
   bool started = false;
+  // the last state the run reached (its start, then each output): a failure
+  // of a conditionally stable method is judged there (run/stability_note.h)
+  double t_last = t_start_;
+  Vec q_last, v_last;
   try {
     // The start; a failure here ends the run below, after the sink has begun
     // (a results file is written as for any failure) and, when the initial
@@ -138,6 +143,8 @@ Outcome SceneRun::perform(Integrator& integ, const IntegratorSettings& settings,
     started = true;
     integ.set_step_monitor([&sink](double t, double h) { sink.between_steps(t, h); });
     if (start_error && st.q.size() != sys.size()) std::rethrow_exception(start_error);
+    q_last = st.q;
+    v_last = st.v;
     sink.between_steps(t_start_, 0.0);
     std::vector<double> row(static_cast<std::size_t>(outputs.size()));
     std::vector<double> times = outputs.times();
@@ -167,11 +174,21 @@ Outcome SceneRun::perform(Integrator& integ, const IntegratorSettings& settings,
       }
       check_finite(outputs, row, t, sys, q, v);
       sink.row(t, row.data());
+      t_last = t;
+      q_last = q;
+      v_last = v;
     });
   } catch (const EndRun&) {
     // the sink ended the run early, as completed (e.g. --until-settled)
   } catch (...) {
     record_failure(out, std::current_exception());
+    if (q_last.size() == sys.size() && out.exit_code == 2) {
+      try {
+        const std::string why = stability_limit_note(sys, settings, t_last, q_last, v_last);
+        if (!why.empty()) out.message += ". Instability: " + why;
+      } catch (...) {  // (the failure's own message stands)
+      }
+    }
   }
   integ.set_step_monitor(nullptr);
   out.stats = integ.stats();

@@ -31,12 +31,20 @@ jobs="${JOBS:-1}"
 # (test_engine_*, test_validation_engine, test_coupled_bodies, test_stability ...)
 # that take minutes without a sanitizer, and test_calculix's Cylinder.* suite,
 # which meshes and solves with gmsh and ccx (external programs, not instrumented).
+# Of test_problems and test_run_faults_output the longest runs are left out
+# (slider crank to its end, the portable-build digits, Radau in every index;
+# a second run into a locked folder, a study stopped by SIGTERM, the stalled
+# steps): each took 20 to 40 s under the sanitizers and repeats code paths
+# the subset's other tests cover; the plain suite (make test) runs them.
 default_tests="test_scene test_scene_elements test_marker_fit test_body_file test_results
   test_gas_pressure test_calculix:Calculix* test_journal_bearing test_journal_bearing_rotor
   test_integrators_sdof test_step_control test_study test_system_jacobian test_bad_inputs
-  test_run_faults test_run_faults_output
-  test_joints test_dae_formulations test_ida_dae test_newmark_dae test_problems
+  test_run_faults
+  test_run_faults_output:-RunFaults.SecondRunIntoTheSameFolderIsRefused:RunFaults.StudyStopsOnSigtermWithItsOutputs:RunFaults.StepsThatNoLongerAdvanceTimeEndTheRun
+  test_joints test_dae_formulations test_ida_dae test_newmark_dae
+  test_problems:-Problems.SliderCrankCompletes:Problems.DigitsAgreeWithThePortableBuild:Problems.RadauSolvesEveryIndex
   test_second_order_ls test_fast_nvector test_radau test_study_tasks
+  test_arkode:-Arkode.RunsThePapersEngine test_amplification test_instability_named
   test_study_sweep:StudySweep.ForkedWorkers*"
 tests=""
 for t in ${SANITIZE_TESTS:-$default_tests}; do

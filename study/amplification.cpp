@@ -139,25 +139,43 @@ std::string field(double x) {
 // real axis.
 void write_region(const fs::path& sub, const AmplificationCase& c, bool plot) {
   std::ofstream f(sub / "region.csv");
-  f << "re_z,im_z,abs_R\n";
+  f << "re_z,im_z,abs_R,status\n";
+  // the figure's data: |R| clipped at 2, a failed point 2.2 (grey); no field
+  // is empty, which would drop the point from gnuplot's grid
+  std::ofstream fig(sub / "region_figure.csv");
+  bool failed = false;
   double im = c.region.front().im;
   for (const RegionPoint& p : c.region) {
-    if (p.im != im) f << "\n";
+    if (p.im != im) {
+      f << "\n";
+      fig << "\n";
+    }
     im = p.im;
-    f << field(p.re) << "," << field(p.im) << ","
-      << (std::isfinite(p.abs_R) ? field(p.abs_R) : "NaN") << "\n";
+    // a point whose fixed step failed (e.g. an implicit stage's Newton
+    // iteration right of the axis): no value, its status says so
+    const bool ok = std::isfinite(p.abs_R);
+    failed = failed || !ok;
+    f << field(p.re) << "," << field(p.im) << "," << (ok ? field(p.abs_R) : "")
+      << (ok ? ",ok\n" : ",failed\n");
+    fig << field(p.re) << "," << field(p.im) << "," << (ok ? field(std::min(p.abs_R, 2.0)) : "2.2")
+        << "\n";
   }
+  fig.close();
+  if (!fig) throw InputError((sub / "region_figure.csv").string() + ": cannot write");
   if (!f) throw InputError((sub / "region.csv").string() + ": cannot write");
   std::ostringstream gp;
   gp << gp_terminal(sub / "region.png", 800, 700) << "set datafile separator ','\n"
-     << "set title " << gp_quote("stability region of " + c.label + ": |R(z)|, stable where <= 1")
+     << "set title " << gp_quote("stability region of " + c.label + ": stable where |R(z)| <= 1")
      << "\nset xlabel 'Re z = Re(h lambda)'\nset ylabel 'Im z = Im(h lambda)'\n"
      << "set view map\nset size ratio -1\nset pm3d map corners2color c1\n"
      << "set palette defined (0 '#2166ac', 0.95 '#d1e5f0', 1 'white', 1.05 '#fddbc7', 2 "
-        "'#b2182b')\n"
-     << "set cbrange [0:2]\nset cblabel '|R(z)| (clipped at 2)'\nunset key\n"
-     << "splot 'region.csv' skip 1 using 1:2:($3 > 2 ? 2 : $3) with pm3d, "
-     << "'region.csv' skip 1 using 1:(-$2):($3 > 2 ? 2 : $3) with pm3d\n";
+        "'#b2182b', 2.001 '#999999', 2.2 '#999999')\n"
+     << "set cbrange [0:2.2]\nset cbtics 0, 0.5, 2\nset cblabel "
+     << gp_quote(std::string("|R(z)| (clipped at 2") +
+                 (failed ? "; grey: the fixed step failed)" : ")"))
+     << "\nunset key\n"
+     << "splot 'region_figure.csv' using 1:2:3 with pm3d, "
+     << "'region_figure.csv' using 1:(-$2):3 with pm3d\n";
   std::ofstream g(sub / "region.gp");
   g << gp.str();
   g.close();
@@ -190,10 +208,13 @@ std::vector<double> parse_h_over_t(const std::string& text) {
 AmplificationCase measure_amplification(const IntegratorSettings& s0,
                                         const std::vector<double>& h_over_T, double zeta) {
   AmplificationCase c;
-  {  // the label without the step, which the study sweeps
-    std::istringstream words(settings_label(s0));
+  {  // the label of fixed steps without the step, which the study sweeps
+    IntegratorSettings fixed = s0;
+    fixed.step_control = StepControl::fixed;
+    std::istringstream words(settings_label(fixed));
     for (std::string w; words >> w;)
-      if (w.rfind("step=", 0) != 0) c.label += (c.label.empty() ? "" : " ") + w;
+      if (w.rfind("step=", 0) != 0 && w != "step_control=fixed")
+        c.label += (c.label.empty() ? "" : " ") + w;
   }
   const IntegratorCapabilities caps = integrator_capabilities(s0.name);
   if (caps.declared && !caps.fixed_step) {
@@ -355,8 +376,10 @@ std::vector<AmplificationCase> amplification_study(const std::vector<std::string
       << gp_quote("one-step amplification of the linear oscillator (zeta = " +
                   field(o.damping_ratio) + ")")
       << "\nset logscale x\nset grid\nset xlabel 'h/T'\nset key outside right top\n"
-      << "set ylabel 'spectral radius rho'\n"
+      << "set lmargin at screen 0.08\nset rmargin at screen 0.6\n"
+      << "set ylabel 'spectral radius rho (clipped at 2.5)'\nset yrange [0:*<2.5]\n"
       << gp[0].str() << "\n"
+      << "unset key\nset autoscale y\n"
       << "set xrange [*:0.5]\nset ylabel 'algorithmic damping ratio'\n"
       << gp[1].str() << "\n"
       << "set ylabel 'period error (T_bar - T)/T'\n"

@@ -6,7 +6,10 @@
 #include <cmath>
 #include <complex>
 #include <fstream>
+#include <sstream>
 
+#include "integrators/newmark.h"
+#include "integrators/settings.h"
 #include "run_faults_support.h"
 #include "study/amplification.h"
 
@@ -20,13 +23,18 @@ constexpr double kPi = 3.141592653589793;
 // The generalized-alpha amplification matrix (Chung & Hulbert 1993, eq. 18
 // with alpha_m, alpha_f, beta, gamma from rho_inf, eqs. 25-27) of the undamped
 // oscillator at Omega = omega h, state (q, h v, h^2 a).
-Eigen::Matrix3d ga_matrix(double W, double r) {
-  const double am = (2 * r - 1) / (r + 1), af = r / (r + 1), g = 0.5 - am + af,
-               b = 0.25 * (1 - am + af) * (1 - am + af);
+// The same matrix for any four parameters (HHT-alpha: alpha_m = 0; Newmark:
+// alpha_m = alpha_f = 0).
+Eigen::Matrix3d family_matrix(double W, double am, double af, double b, double g) {
   Eigen::Matrix3d L, R;
   L << 1, 0, -b, 0, 1, -g, W * W * (1 - af), 0, 1 - am;
   R << 1, 1, 0.5 - b, 0, 1, 1 - g, -W * W * af, 0, -am;
   return L.inverse() * R;
+}
+
+Eigen::Matrix3d ga_matrix(double W, double r) {
+  const double am = (2 * r - 1) / (r + 1), af = r / (r + 1);
+  return family_matrix(W, am, af, 0.25 * (1 - am + af) * (1 - am + af), 0.5 - am + af);
 }
 
 double spectral_radius(const Eigen::Matrix3d& A) {
@@ -95,6 +103,55 @@ TEST(Amplification, GeneralizedAlphaAgainstItsAmplificationMatrix) {
   }
 }
 
+// The built-in members of the family against the same matrix: HHT-alpha
+// (Hilber, Hughes & Taylor 1977: alpha_m = 0, alpha_f = -alpha, gamma = 1/2 -
+// alpha, beta = (1 - alpha)^2 / 4; rho at infinity (1 + alpha) / (1 - alpha)),
+// Newmark's beta, gamma (average acceleration; gamma = 0.6 with beta = 0.3025
+// unconditionally stable, with beta = 1/4 stable to h omega = (gamma/2 -
+// beta)^(-1/2), Hughes, The Finite Element Method, section 9.1.2) and the
+// central difference (beta = 0: h/T <= 1/pi).
+TEST(Amplification, HhtNewmarkAndCentralDifferenceAgainstTheirMatrices) {
+  const std::vector<double> ht = {0.01, 0.1, 0.3, 1.0, 10.0};
+  struct Member {
+    std::string spec;
+    double am, af, b, g;
+  };
+  const double third = 1.0 / 3.0;
+  const std::vector<Member> members = {
+      {"hht-alpha alpha=-0.3333333333333333", 0, third, (1 + third) * (1 + third) / 4, 0.5 + third},
+      {"hht-alpha alpha=-0.1", 0, 0.1, 1.1 * 1.1 / 4, 0.6},
+      {"newmark", 0, 0, 0.25, 0.5},
+      {"newmark beta=0.3025 gamma=0.6", 0, 0, 0.3025, 0.6},
+      {"newmark beta=0.25 gamma=0.6", 0, 0, 0.25, 0.6},
+      {"central-difference", 0, 0, 0, 0.5}};
+  for (const Member& m : members) {
+    SCOPED_TRACE(m.spec);
+    IntegratorSettings s;
+    std::istringstream words(m.spec);
+    words >> s.name;
+    for (std::string kv; words >> kv;) apply_setting_assignment(s, kv);
+    const study::AmplificationCase c = study::measure_amplification(s, ht, 0.0);
+    ASSERT_TRUE(c.refused.empty()) << c.refused;
+    ASSERT_EQ(c.points.size(), ht.size());
+    for (std::size_t k = 0; k < ht.size(); ++k) {
+      const double exact = spectral_radius(family_matrix(2 * kPi * ht[k], m.am, m.af, m.b, m.g));
+      // past the limit the growth over the measured steps is fitted, not summed
+      if (exact < 1.5) {
+        EXPECT_NEAR(c.points[k].spectral_radius, exact, 1e-7 * std::max(1.0, exact)) << ht[k];
+      }
+    }
+  }
+  // the limits: central difference h/T = 1/pi, Newmark (1/4, 0.6) 1/(pi sqrt(0.2))
+  IntegratorSettings cd;
+  cd.name = "central-difference";
+  const auto lim = study::measure_amplification(cd, {0.99 / kPi, 1.01 / kPi}, 0.0);
+  EXPECT_LE(lim.points[0].spectral_radius, 1 + 1e-9);
+  EXPECT_GT(lim.points[1].spectral_radius, 1 + 1e-3);
+  EXPECT_DOUBLE_EQ(NewmarkIntegrator::stability_limit(0.25, 0.6), 1 / std::sqrt(0.05));
+  EXPECT_DOUBLE_EQ(NewmarkIntegrator::stability_limit(1.0 / 6, 0.5), std::sqrt(12.0));
+  EXPECT_TRUE(std::isinf(NewmarkIntegrator::stability_limit(0.25, 0.5)));
+}
+
 // Radau IIA (3 stages) on the damped oscillator: its amplification
 // eigenvalues are R(h lambda) at the oscillator's eigenvalues lambda = omega
 // (-zeta +- i sqrt(1 - zeta^2)), R(z) = (1 + 2z/5 + z^2/20) / (1 - 3z/5 +
@@ -157,7 +214,7 @@ TEST(Amplification, CommandWritesTheAtlas) {
   EXPECT_TRUE(fs::exists(out / "case0" / "region.png"));
   std::ifstream region(out / "case0" / "region.csv");
   std::getline(region, header);
-  EXPECT_EQ(header, "re_z,im_z,abs_R");
+  EXPECT_EQ(header, "re_z,im_z,abs_R,status");
   EXPECT_NE(o.log.find("ida chooses its own step and order"), std::string::npos) << o.log;
   const Outcome only_ida = run_evas({"study", "amplification", "--case", "ida", "--no-plot",
                                      "--out", (tmp.path() / "ida").string()},

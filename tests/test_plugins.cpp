@@ -159,7 +159,7 @@ TEST(Plugins, AmplificationOfAPlugInIsMeasured) {
   const std::string plug = " --plugin " + std::string(EVAS_HHT_PLUGIN);
   const std::string log = " > " + (tmp.path / "log").string() + " 2>&1";
   ASSERT_EQ(shell(kEvas.string() + " study amplification" + plug +
-                  " --case 'hht-alpha alpha=-0.3333333333333333,-0.1' --case "
+                  " --case 'hht-plugin alpha=-0.3333333333333333,-0.1' --case "
                   "'generalized-alpha rho_inf=0.5' --h-over-t 0.01,0.1,1,1000 --no-plot --out " +
                   (tmp.path / "amp").string() + log),
             0)
@@ -194,7 +194,7 @@ TEST(Plugins, HhtPluginDeclaresAlphaThatSetReaches) {
   const std::string plug = " --plugin " + std::string(EVAS_HHT_PLUGIN);
   const std::string base = kEvas.string() + " run " + scene + " -q --t-end 0.02 --csv";
   const std::string log = " > " + (tmp.path / "log").string() + " 2>&1";
-  ASSERT_EQ(shell(base + plug + " --integrator hht-alpha --set alpha=-0.3333333333333333 --out " +
+  ASSERT_EQ(shell(base + plug + " --integrator hht-plugin --set alpha=-0.3333333333333333 --out " +
                   (tmp.path / "hht").string() + log),
             0)
       << read_text(tmp.path / "log");
@@ -208,37 +208,37 @@ TEST(Plugins, HhtPluginDeclaresAlphaThatSetReaches) {
             std::string::npos);
   // the default alpha (-0.05) is another method: other numbers
   ASSERT_EQ(
-      shell(base + plug + " --integrator hht-alpha --out " + (tmp.path / "hht0").string() + log),
+      shell(base + plug + " --integrator hht-plugin --out " + (tmp.path / "hht0").string() + log),
       0);
   EXPECT_NE(read_text(tmp.path / "hht0" / "results.csv"),
             read_text(tmp.path / "ga" / "results.csv"));
   // out of range, and a setting no loaded integrator declares
-  EXPECT_EQ(shell(base + plug + " --integrator hht-alpha --set alpha=-0.5 --out " +
+  EXPECT_EQ(shell(base + plug + " --integrator hht-plugin --set alpha=-0.5 --out " +
                   (tmp.path / "bad").string() + log),
             1);
   EXPECT_NE(read_text(tmp.path / "log").find("alpha: -0.5 is outside [-0.3333333333333333, 0]"),
             std::string::npos)
       << read_text(tmp.path / "log");
-  EXPECT_EQ(shell(base + " --integrator generalized-alpha --set alpha=-0.1 --out " +
+  EXPECT_EQ(shell(base + " --integrator generalized-alpha --set alfa=-0.1 --out " +
                   (tmp.path / "bad2").string() + log),
             1);
-  EXPECT_NE(read_text(tmp.path / "log").find("'alpha' is not an integrator setting"),
+  EXPECT_NE(read_text(tmp.path / "log").find("'alfa' is not an integrator setting"),
             std::string::npos)
       << read_text(tmp.path / "log");
   // --help-settings lists it; a study's case grid sweeps it and its labels name it
   ASSERT_EQ(shell(kEvas.string() + " run --help-settings" + plug + log), 0);
-  EXPECT_NE(read_text(tmp.path / "log").find("| `alpha` | -0.05 | hht-alpha (its own) |"),
+  EXPECT_NE(read_text(tmp.path / "log").find("| `alpha` | -0.05 | hht-plugin (its own) |"),
             std::string::npos)
       << read_text(tmp.path / "log");
   ASSERT_EQ(shell(kEvas.string() + " study work-precision " + scene + plug +
-                  " --t-end 0.02 --no-plot -q --case 'hht-alpha alpha=-0.3,-0.1 step=1e-4' "
+                  " --t-end 0.02 --no-plot -q --case 'hht-plugin alpha=-0.3,-0.1 step=1e-4' "
                   "--out " +
                   (tmp.path / "study").string() + log),
             0)
       << read_text(tmp.path / "log");
   const std::string csv = read_text(tmp.path / "study" / "study.csv");
-  EXPECT_NE(csv.find(" step=0.0001 alpha=-0.3,hht-alpha,"), std::string::npos) << csv;
-  EXPECT_NE(csv.find(" step=0.0001 alpha=-0.1,hht-alpha,"), std::string::npos) << csv;
+  EXPECT_NE(csv.find(" step=0.0001 alpha=-0.3,hht-plugin,"), std::string::npos) << csv;
+  EXPECT_NE(csv.find(" step=0.0001 alpha=-0.1,hht-plugin,"), std::string::npos) << csv;
 }
 
 TEST(Plugins, RegistryRefusesBadDeclaredSettings) {

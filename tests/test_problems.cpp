@@ -520,9 +520,11 @@ TEST(Problems, Command) {
   std::string line;
   int lines = 0;
   while (std::getline(csv, line)) ++lines;
-  EXPECT_EQ(lines, 1 + 4 * 8 + 3 * 8 + 8) << text;  // ida x 4, radau x 3, generalized-alpha
+  // ida x 4, radau x 3, generalized-alpha and hht-alpha
+  EXPECT_EQ(lines, 1 + 4 * 8 + 3 * 8 + 8 + 8) << text;
   EXPECT_NE(text.find("radau index-2"), std::string::npos) << text;
   EXPECT_NE(text.find("generalized-alpha index-3"), std::string::npos) << text;
+  EXPECT_NE(text.find("hht-alpha index-3"), std::string::npos) << text;
   text = run_evas("problem pendulum --work-precision", code);
   EXPECT_EQ(code, 1) << text;
   text = run_evas("problem --list", code);

@@ -199,7 +199,7 @@ TEST(Results, SummaryJson) {
   // family's), those it reads are not
   EXPECT_NE(text.find("\"settings_not_read\": [\"step\", \"min_step\", \"step_control\", "
                       "\"iteration\", \"anderson_depth\", \"balance_tol\", "
-                      "\"max_iterations\", \"method\", \"rho_inf\"]"),
+                      "\"max_iterations\", \"method\", \"table\", \"rho_inf\"]"),
             std::string::npos)
       << text;
 }
@@ -230,7 +230,8 @@ TEST(Results, UnreadSettingsAreNamedWithTheReason) {
   };
   const Check checks[] = {
       {"ida", "klu", "default", "default", "step",
-       "ida does not read it (generalized-alpha, linear-acceleration, radau do)"},
+       "ida does not read it (generalized-alpha, linear-acceleration, radau, hht-alpha, newmark, "
+       "central-difference, arkode do)"},
       {"ida", "klu", "default", "default", "rho_inf",
        "ida does not read it (generalized-alpha does)"},
       {"ida", "klu", "default", "default", "rtol", ""},
@@ -239,7 +240,8 @@ TEST(Results, UnreadSettingsAreNamedWithTheReason) {
        "it is read only with linear_solver=second-order (here: klu)"},
       {"ida", "second-order", "default", "default", "jacobian_age", ""},
       {"ida", "klu", "anderson", "default", "anderson_depth",
-       "ida does not read it (generalized-alpha, linear-acceleration do, with "
+       "ida does not read it (generalized-alpha, linear-acceleration, hht-alpha, newmark, "
+       "central-difference do, with "
        "iteration=anderson)"},
       {"cvode", "second-order", "default", "default", "jacobian_age",
        "cvode does not read it (ida does, with linear_solver=second-order)"},

@@ -17,11 +17,11 @@
 // substep or adaptive, dense output between steps, landing on outputs and
 // stops without capping the step); `alpha` is declared as the plug-in's own
 // setting, set like any other (`--set alpha=-0.1`, the scene's `integrator:`
-// block, `evas study --case "hht-alpha alpha=-0.3,-0.1 step=..."`).
+// block, `evas study --case "hht-plugin alpha=-0.3,-0.1 step=..."`).
 //
 //     cmake -S examples/hht_plugin -B build-hht && cmake --build build-hht
 //     evas run scenes/demo.yaml --plugin build-hht/libevas_hht.so
-//         --integrator hht-alpha --set alpha=-0.1 --step 1e-4     (one line)
+//         --integrator hht-plugin --set alpha=-0.1 --step 1e-4     (one line)
 #include <memory>
 #include <string>
 
@@ -33,7 +33,7 @@ namespace {
 
 class HhtAlpha final : public evas::NewmarkDaeIntegrator {
  public:
-  std::string name() const override { return "hht-alpha"; }
+  std::string name() const override { return "hht-plugin"; }
 
  protected:
   Parameters parameters() const override {
@@ -71,7 +71,7 @@ EVAS_PLUGIN_EXPORT int evas_plugin_init(int abi_version) {
       "-1/3: the most, spectral radius 1/2 at infinity)";
   caps.settings.push_back(alpha);
   evas::register_integrator(
-      "hht-alpha", [] { return std::make_unique<HhtAlpha>(); },
+      "hht-plugin", [] { return std::make_unique<HhtAlpha>(); },
       "HHT-alpha (Hilber, Hughes & Taylor 1977), example plug-in with its own setting alpha", caps);
   return 0;
 }

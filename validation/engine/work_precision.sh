@@ -44,5 +44,9 @@ for c in $cases; do
     --case "linear-acceleration iteration=newton step=1e-5,5e-6" \
     --case "linear-acceleration iteration=anderson step=1e-5,5e-6" \
     --case "linear-acceleration iteration=fixed-point step=5e-7" \
-    --case "radau step_control=adaptive step=1e-5 rtol=1e-3..1e-6/4"
+    --case "radau step_control=adaptive step=1e-5 rtol=1e-3..1e-6/4" \
+    --case "hht-alpha alpha=-0.1 step=2e-5,1e-5,5e-6,2.5e-6" \
+    --case "newmark step=2e-5,1e-5,5e-6,2.5e-6" \
+    --case "central-difference step=5e-6,2.5e-6" \
+    --case "arkode linear_solver=second-order rtol=1e-3..1e-5/3"
 done
