@@ -368,15 +368,7 @@ class IdaIntegrator final : public Integrator {
 
   [[noreturn]] void fail(const std::string& why) {
     const double tn = current_time();
-    std::string msg = "ida: " + why + " at t = " + format_number(tn) + " s";
-    if (!last_error_.empty()) msg += " (" + last_error_ + ")";
-    const std::string cb = guard_.take_message();
-    if (!cb.empty())
-      msg += guard_.recoverable > 0 ? "; the model refused " + std::to_string(guard_.recoverable) +
-                                          " trial states (the solver cut the step each time), "
-                                          "last: " +
-                                          cb
-                                    : "; model error: " + cb;
+    std::string msg = sundials::failure_message("ida", why, tn, last_error_, guard_);
     const double* y = y_.data();
     if (IDAGetDky(mem_, tn, 0, ytmp_.get()) == IDA_SUCCESS) y = ytmp_.data();
     msg += "; state: " + p_->describe_state(tn, y, y + n_);

@@ -83,17 +83,8 @@ int SundialsOdeIntegrator::jacobian(double t, N_Vector y, SUNMatrix J) {
 
 std::string SundialsOdeIntegrator::failure(const std::string& head, const std::string& why,
                                            double tn, const double* y) const {
-  std::string msg = head + ": " + why + " at t = " + format_number(tn) + " s";
-  if (!last_error_.empty()) msg += " (" + last_error_ + ")";
-  const std::string cb = guard_.take_message();
-  if (!cb.empty())
-    msg += guard_.recoverable > 0 ? "; the model refused " + std::to_string(guard_.recoverable) +
-                                        " trial states (the solver cut the step each time), "
-                                        "last: " +
-                                        cb
-                                  : "; model error: " + cb;
-  msg += "; state: " + p_->describe_state(tn, y, y + n_);
-  return msg;
+  return sundials::failure_message(head, why, tn, last_error_, guard_) +
+         "; state: " + p_->describe_state(tn, y, y + n_);
 }
 
 void SundialsOdeIntegrator::error_cb(int /*code*/, const char* module, const char* function,

@@ -221,6 +221,23 @@ struct CallbackGuard {
   }
 };
 
+/// The failure message of a SUNDIALS adapter: "<head>: <why> at t = ... s
+/// (solver's message); the model refused N trial states ..., last: ... (or
+/// model error: ...)"; the caller adds the state. Takes the guard's message.
+inline std::string failure_message(const std::string& head, const std::string& why, double tn,
+                                   const std::string& solver_message, CallbackGuard& guard) {
+  std::string msg = head + ": " + why + " at t = " + format_number(tn) + " s";
+  if (!solver_message.empty()) msg += " (" + solver_message + ")";
+  const std::string cb = guard.take_message();
+  if (!cb.empty())
+    msg += guard.recoverable > 0 ? "; the model refused " + std::to_string(guard.recoverable) +
+                                       " trial states (the solver cut the step each time), "
+                                       "last: " +
+                                       cb
+                                 : "; model error: " + cb;
+  return msg;
+}
+
 /// Add the counters of a finished segment (before a ReInit) to a running total.
 inline void add_segment(IntegratorStats& total, const IntegratorStats& seg) {
   total.steps += seg.steps;
