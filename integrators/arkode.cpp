@@ -10,10 +10,24 @@
 //   explicit (ERK, e.g. ARKODE_DORMAND_PRINCE_7_4_5): no linear solver.
 // Steps: adaptive against rtol/atol (ARKODE's PID controller), or fixed at
 // `step` with step_control=fixed (ARKStepSetFixedStep: no error control;
-// what evas study amplification measures). The additive (IMEX) pairs are not
-// offered: evas has no split of f into a stiff and a non-stiff part yet.
-// Like cvode it takes M = I only: constrained problems run as penalty forces
-// (formulation=penalty), a mass matrix is refused.
+// what evas study amplification measures).
+// Additive (IMEX) pairs (Kennedy & Carpenter's ARK tables, Appl. Numer. Math.
+// 44 (2003) 139-181 and 136 (2019) 183-205, ARKODE's
+// ARKODE_ARK324L2SA_DIRK_4_2_3 / _ERK_4_2_3 and the like; the setting `table`
+// names either half of a pair) split g = B + E with B the bodies' own modal
+// stiffness and damping (Problem::body_operator: f = f0(t) + KB q + CB v +
+// element loads, the split of the paper's Steps <4>-<6>),
+//     B = [v; -(KB q + CB v); 0],   E = g - B
+// (so the split is exact whatever f holds):
+//   imex=body      B implicit and linear (ARKStepSetLinear: one Newton
+//                  iteration per stage; linear_solver=second-order with K =
+//                  KB, C = CB), E explicit: the high body modes cost no
+//                  stability, the elements' stiffness bounds the step;
+//   imex=elements  E implicit (its Jacobian dg/dy less B's, linear_solver klu
+//                  or dense: it has no q' = v block), B explicit: the films'
+//                  stiffness is implicit, the bodies' highest mode bounds the
+//                  step.
+// Both need modal bodies (KB, CB not all zero).
 #include <arkode/arkode_arkstep.h>
 #include <arkode/arkode_butcher_dirk.h>
 #include <arkode/arkode_butcher_erk.h>
@@ -23,7 +37,6 @@
 #include <string>
 #include <vector>
 
-#include "dae/constraint_stats.h"
 #include "integrators/sundials_ode.h"
 
 namespace evas {
@@ -73,6 +86,30 @@ bool listed(const std::vector<std::string>& names, const std::string& name) {
   return false;
 }
 
+// ARKODE's additive pairs: the DIRK and ERK halves of each name.
+const std::vector<std::string>& ark_pairs() {
+  static const std::vector<std::string> p = {"ARK324L2SA_%_4_2_3", "ARK436L2SA_%_6_3_4",
+                                             "ARK437L2SA_%_7_3_4", "ARK548L2SA_%_8_4_5",
+                                             "ARK548L2SAb_%_8_4_5"};
+  return p;
+}
+
+std::string pair_half(const std::string& pattern, const std::string& kind) {
+  std::string s = "ARKODE_" + pattern;
+  s.replace(s.find('%'), 1, kind);
+  return s;
+}
+
+// The (DIRK, ERK) pair that `table` is half of; false when none.
+bool ark_pair(const std::string& table, std::string& dirk, std::string& erk) {
+  for (const auto& p : ark_pairs()) {
+    dirk = pair_half(p, "DIRK");
+    erk = pair_half(p, "ERK");
+    if (table == dirk || table == erk) return true;
+  }
+  return false;
+}
+
 class ArkodeIntegrator final : public SundialsOdeIntegrator {
  public:
   ArkodeIntegrator() = default;
@@ -91,23 +128,64 @@ class ArkodeIntegrator final : public SundialsOdeIntegrator {
     fixed_ = s.step_control == StepControl::fixed;
     if (fixed_ && !(s.step > 0.0))
       throw InputError("arkode: step must be > 0 with step_control=fixed");
+    split_ = s.imex == "body" ? Split::body : s.imex == "elements" ? Split::elements : Split::none;
+    imex_ = split_ != Split::none;
+    std::string dirk = s.table, erk = s.table;
+    if (imex_) {
+      const std::string who = "arkode: imex=" + s.imex;
+      if (!ark_pair(s.table, dirk, erk)) {
+        std::string names;
+        for (const auto& q : ark_pairs())
+          names += (names.empty() ? "" : ", ") + pair_half(q, "DIRK");
+        throw InputError(who + " needs an additive pair's table (" + names +
+                         ", or their _ERK_ halves), not '" + s.table + "'");
+      }
+      if (split_ == Split::body && s.linear_solver != "second-order")
+        throw InputError(who +
+                         " needs linear_solver=second-order (its implicit part is the bodies' K "
+                         "and C), not " +
+                         s.linear_solver);
+      if (split_ == Split::elements && s.linear_solver == "second-order")
+        throw InputError(who +
+                         " needs linear_solver=klu or dense (its implicit part has no q' = v "
+                         "block, which the second-order solver eliminates)");
+      implicit_ = true;
+    }
     prepare("arkode", p, t0, q0, v0, s);
 
-    mem_ = implicit_ ? ARKStepCreate(nullptr, &ArkodeIntegrator::rhs_cb, t0, y_.get(), ctx_)
-                     : ARKStepCreate(&ArkodeIntegrator::rhs_cb, nullptr, t0, y_.get(), ctx_);
+    if (imex_) {
+      kb_ = model_->jacobian_pattern();
+      cb_ = kb_;
+      model_->body_operator(t0, kb_, cb_);
+      kb_t_ = t0;
+      if (kb_.coeffs().isZero(0.0) && cb_.coeffs().isZero(0.0))
+        throw InputError("arkode: imex=" + s.imex +
+                         " needs modal bodies (their stiffness and damping are one of the two "
+                         "parts); this problem has none");
+      mem_ = ARKStepCreate(explicit_fn(), implicit_fn(), t0, y_.get(), ctx_);
+    } else {
+      mem_ = implicit_ ? ARKStepCreate(nullptr, &ArkodeIntegrator::rhs_cb, t0, y_.get(), ctx_)
+                       : ARKStepCreate(&ArkodeIntegrator::rhs_cb, nullptr, t0, y_.get(), ctx_);
+    }
     if (!mem_) throw RunError("arkode: ARKStepCreate failed");
     void* self = static_cast<SundialsOdeIntegrator*>(this);
     check(ARKStepSetErrHandlerFn(mem_, &SundialsOdeIntegrator::error_cb, self),
           "ARKStepSetErrHandlerFn");
     check(ARKStepSetUserData(mem_, self), "ARKStepSetUserData");
-    check(ARKStepSetTableName(mem_, implicit_ ? s.table.c_str() : "ARKODE_DIRK_NONE",
-                              implicit_ ? "ARKODE_ERK_NONE" : s.table.c_str()),
-          "ARKStepSetTableName");
+    if (imex_)
+      check(ARKStepSetTableName(mem_, dirk.c_str(), erk.c_str()), "ARKStepSetTableName");
+    else
+      check(ARKStepSetTableName(mem_, implicit_ ? s.table.c_str() : "ARKODE_DIRK_NONE",
+                                implicit_ ? "ARKODE_ERK_NONE" : s.table.c_str()),
+            "ARKStepSetTableName");
     check(ARKStepSStolerances(mem_, s.rtol, s.atol), "ARKStepSStolerances");
     if (implicit_) {
       make_linear_solver("arkode");
       check(ARKStepSetLinearSolver(mem_, ls_.solver(), ls_.matrix()), "ARKStepSetLinearSolver");
       check(ARKStepSetJacFn(mem_, &ArkodeIntegrator::jacobian_cb), "ARKStepSetJacFn");
+      // imex=body: the implicit part is linear in y (KB, CB may change with t:
+      // the Jacobian is evaluated anew at each setup)
+      if (split_ == Split::body) check(ARKStepSetLinear(mem_, 1), "ARKStepSetLinear");
       // the stages' first guess from the last step's dense output at its full
       // order (ARKODE's predictor 1) in place of the last value (0): on the
       // paper's engine to 0.05 s at rtol 1e-4, 107,689 residuals in 6,481
@@ -123,7 +201,7 @@ class ArkodeIntegrator final : public SundialsOdeIntegrator {
     if (s.max_step > 0.0) check(ARKStepSetMaxStep(mem_, s.max_step), "ARKStepSetMaxStep");
     check(ARKStepSetMaxNumSteps(mem_, s.max_steps), "ARKStepSetMaxNumSteps");
     {  // the table's order, reported as the run's last order
-      ARKodeButcherTable b = implicit_ ? ARKodeButcherTable_LoadDIRKByName(s.table.c_str())
+      ARKodeButcherTable b = implicit_ ? ARKodeButcherTable_LoadDIRKByName(dirk.c_str())
                                        : ARKodeButcherTable_LoadERKByName(s.table.c_str());
       if (!b) throw InputError("arkode: ARKODE does not know table '" + s.table + "'");
       order_ = b->q;
@@ -132,75 +210,37 @@ class ArkodeIntegrator final : public SundialsOdeIntegrator {
     t_ = t0;
   }
 
-  void advance(double tout, bool land, Vec& q, Vec& v) override {
-    WallTimer timer(total_.wall_seconds);
-    if (!mem_) throw RunError("arkode: advance() before init()");
-    last_error_.clear();
-    if (!(tout > t_)) {
-      throw RunError("arkode: output time " + format_number(tout) + " s is not after " +
-                     format_number(t_) + " s");
-    }
-    const double tstop = land ? tout : p_->next_stop(t_);
-    if (std::isfinite(tstop) && tstop > current_time())
-      check(ARKStepSetStopTime(mem_, tstop), "ARKStepSetStopTime");
-
-    const bool exact = sundials::step_to(
-        tout, s_.max_steps, ARK_TSTOP_RETURN, total_,
-        [&](double& tret) { return ARKStepEvolve(mem_, tout, y_.get(), &tret, ARK_ONE_STEP); },
-        [&] {
-          double h = 0.0;
-          ARKStepGetLastStep(mem_, &h);
-          return h;
-        },
-        [&] { return current_time(); },
-        [&](int flag, const std::string& why) {
-          fail(flag < 0 ? sundials::flag_name(ARKStepGetReturnFlagName(flag)) : why);
-        },
-        [&](double t, double h) { step_done(t, h); });
-    if (!exact) {
-      const int flag = ARKStepGetDky(mem_, tout, 0, ytmp_.get());
-      if (flag < 0) fail(sundials::flag_name(ARKStepGetReturnFlagName(flag)));
-      get_state(ytmp_.data(), q, v);
-    } else {
-      get_state(y_.data(), q, v);
-    }
-    t_ = tout;
-    if (p_->constraint_count() > 0) dae::note_constraints(*p_, tout, q, v, total_);
-  }
-
-  void restart(double t, const Vec& q, const Vec& v) override {
-    WallTimer timer(total_.wall_seconds);
-    if (!mem_) throw RunError("arkode: restart() before init()");
-    sundials::add_segment(total_, segment());  // ARKStepReInit resets the counters
-    ++total_.restarts;
-    set_state(q, v);
-    check(implicit_ ? ARKStepReInit(mem_, nullptr, &ArkodeIntegrator::rhs_cb, t, y_.get())
-                    : ARKStepReInit(mem_, &ArkodeIntegrator::rhs_cb, nullptr, t, y_.get()),
-          "ARKStepReInit");
-    t_ = t;
-  }
-
-  IntegratorStats stats() const override {
-    IntegratorStats out = total_;
-    out.refused_states = guard_.recoverable;
-    if (!mem_) return out;
-    sundials::add_segment(out, segment());
-    double h = 0.0;
-    ARKStepGetLastStep(mem_, &h);
-    out.last_step = h;
-    out.last_order = order_;
-    return out;
-  }
-
  private:
-  double current_time() const {
+  bool has_solver() const override { return mem_ != nullptr; }
+  int solver_step(double tout, double& tret) override {
+    return ARKStepEvolve(mem_, tout, y_.get(), &tret, ARK_ONE_STEP);
+  }
+  int solver_set_stop(double tstop) override { return ARKStepSetStopTime(mem_, tstop); }
+  int solver_dky(double t, N_Vector out) const override { return ARKStepGetDky(mem_, t, 0, out); }
+  double solver_time() const override {
     double tn = t_;
     ARKStepGetCurrentTime(mem_, &tn);
     return tn;
   }
+  double solver_last_step() const override {
+    double h = 0.0;
+    ARKStepGetLastStep(mem_, &h);
+    return h;
+  }
+  int solver_last_order() const override { return order_; }
+  int solver_reinit(double t) override {
+    return imex_       ? ARKStepReInit(mem_, explicit_fn(), implicit_fn(), t, y_.get())
+           : implicit_ ? ARKStepReInit(mem_, nullptr, &ArkodeIntegrator::rhs_cb, t, y_.get())
+                       : ARKStepReInit(mem_, &ArkodeIntegrator::rhs_cb, nullptr, t, y_.get());
+  }
+  std::string solver_flag_name(int flag) const override {
+    return sundials::flag_name(ARKStepGetReturnFlagName(flag));
+  }
+  int tstop_return() const override { return ARK_TSTOP_RETURN; }
+  std::string failure_head() const override { return "arkode (" + s_.table + ")"; }
 
   // Counters since the last ARKStepCreate/ARKStepReInit.
-  IntegratorStats segment() const {
+  IntegratorStats segment() const override {
     IntegratorStats s;
     long nfe = 0, nfi = 0;
     ARKStepGetNumSteps(mem_, &s.steps);
@@ -221,21 +261,6 @@ class ArkodeIntegrator final : public SundialsOdeIntegrator {
     return s;
   }
 
-  void check(int flag, const char* what) {
-    if (flag < 0) {
-      throw RunError(std::string("arkode: ") + what + " failed with " +
-                     sundials::flag_name(ARKStepGetReturnFlagName(flag)) +
-                     (last_error_.empty() ? "" : " (" + last_error_ + ")"));
-    }
-  }
-
-  [[noreturn]] void fail(const std::string& why) {
-    const double tn = current_time();
-    const double* y = y_.data();
-    if (ARKStepGetDky(mem_, tn, 0, ytmp_.get()) == ARK_SUCCESS) y = ytmp_.data();
-    throw RunError(failure("arkode (" + s_.table + ")", why, tn, y));
-  }
-
   void free_memory() {
     if (mem_) ARKStepFree(&mem_);
     mem_ = nullptr;
@@ -250,10 +275,84 @@ class ArkodeIntegrator final : public SundialsOdeIntegrator {
   }
   static int jacobian_cb(realtype t, N_Vector y, N_Vector /*fy*/, SUNMatrix J, void* user, N_Vector,
                          N_Vector, N_Vector) {
-    return from(user)->jacobian(t, y, J);
+    ArkodeIntegrator* self = from(user);
+    switch (self->split_) {
+      case Split::none:
+        return self->jacobian(t, y, J);
+      case Split::body:  // the implicit part's K and C: the bodies' own
+        return self->guard_.run([&] {
+          SecondOrderSolver* so = self->ls_.second_order();
+          self->model_->body_operator(t, so->K(), so->C());
+        });
+      case Split::elements:
+        return self->guard_.run([&] { self->rest_jacobian(t, N_VGetArrayPointer(y), J); });
+    }
+    return -1;
+  }
+  // The two parts of g (see above): the body part [v; -(KB q + CB v); 0] and
+  // the rest, g minus it.
+  static int body_cb(realtype t, N_Vector y, N_Vector yd, void* user) {
+    ArkodeIntegrator* self = from(user);
+    return self->guard_.run(
+        [&] { self->body_part(t, N_VGetArrayPointer(y), N_VGetArrayPointer(yd)); });
+  }
+  static int rest_cb(realtype t, N_Vector y, N_Vector yd, void* user) {
+    ArkodeIntegrator* self = from(user);
+    return self->guard_.run([&] {
+      const double* yv = N_VGetArrayPointer(y);
+      double* out = N_VGetArrayPointer(yd);
+      self->form_->rhs(t, yv, out);  // [v; -f; z']
+      Vec& bi = self->body_rhs_;
+      bi.resize(self->form_->size());
+      self->body_part(t, yv, bi.data());
+      for (int i = 0; i < 2 * self->n_; ++i) out[i] -= bi[i];
+    });
+  }
+  ARKRhsFn explicit_fn() const {
+    return split_ == Split::body ? &ArkodeIntegrator::rest_cb : &ArkodeIntegrator::body_cb;
+  }
+  ARKRhsFn implicit_fn() const {
+    return split_ == Split::body ? &ArkodeIntegrator::body_cb : &ArkodeIntegrator::rest_cb;
+  }
+  void update_body_operator(double t) {
+    if (t != kb_t_) {
+      model_->body_operator(t, kb_, cb_);
+      kb_t_ = t;
+    }
+  }
+  // [v; -(KB q + CB v); 0] at t into out (KB, CB evaluated once per t)
+  void body_part(double t, const double* y, double* out) {
+    update_body_operator(t);
+    Eigen::Map<const Vec> q(y, n_), v(y + n_, n_);
+    Eigen::Map<Vec> oq(out, n_), ov(out + n_, n_);
+    oq = v;
+    ov.noalias() = -(kb_ * q);
+    ov.noalias() -= cb_ * v;
+    for (int i = 2 * n_; i < form_->size(); ++i) out[i] = 0.0;
+  }
+  // imex=elements: the Jacobian of the rest, dg/dy - [0, I, 0; -KB, -CB, 0; 0, 0, 0]
+  void rest_jacobian(double t, const double* y, SUNMatrix J) {
+    form_->rhs_jacobian(t, y, J_);
+    update_body_operator(t);
+    for (int c = 0; c < J_.outerSize(); ++c)
+      for (SpMat::InnerIterator it(J_, c); it; ++it) {
+        const int r = static_cast<int>(it.row()), col = static_cast<int>(it.col());
+        if (r < n_ && col >= n_ && col < 2 * n_ && r == col - n_)
+          it.valueRef() = 0.0;  // q' = v is the body part's
+        else if (r >= n_ && r < 2 * n_ && col < n_)
+          it.valueRef() += kb_.coeff(r - n_, col);
+        else if (r >= n_ && r < 2 * n_ && col < 2 * n_)
+          it.valueRef() += cb_.coeff(r - n_, col - n_);
+      }
+    ls_.copy(J_, J);
   }
 
-  bool implicit_ = true, fixed_ = false;
+  enum class Split { none, body, elements };
+  Split split_ = Split::none;
+  bool implicit_ = true, fixed_ = false, imex_ = false;
+  SpMat kb_, cb_;  // imex: the body operator at kb_t_
+  double kb_t_ = 0.0;
+  Vec body_rhs_;
   int order_ = 0;
   void* mem_ = nullptr;
 };
@@ -266,12 +365,24 @@ IntegratorEntry arkode_entry() {
   c.adaptive = true;
   c.fixed_step = true;
   c.fixed_step_on_request = true;
-  c.reads = {"rtol",           "atol",      "step",          "step_control",
-             "max_step",       "table",     "linear_solver", "newton_coefficient",
-             "max_iterations", "max_steps", "formulation",   "penalty_stiffness",
+  c.reads = {"rtol",
+             "atol",
+             "step",
+             "step_control",
+             "max_step",
+             "table",
+             "imex",
+             "linear_solver",
+             "newton_coefficient",
+             "max_iterations",
+             "max_steps",
+             "formulation",
+             "penalty_stiffness",
              "penalty_damping"};
   return {"arkode", [] { return std::make_unique<ArkodeIntegrator>(); },
-          "ARKODE (SUNDIALS): implicit (DIRK, ESDIRK) or explicit Runge-Kutta tables by name", c};
+          "ARKODE (SUNDIALS): implicit (DIRK, ESDIRK), explicit or additive (IMEX) Runge-Kutta "
+          "tables by name",
+          c};
 }
 
 }  // namespace evas

@@ -23,6 +23,7 @@ IntegratorEntry hht_alpha_entry();
 IntegratorEntry newmark_entry();
 IntegratorEntry central_difference_entry();
 IntegratorEntry arkode_entry();
+IntegratorEntry bathe_entry();
 
 /// A number in six significant digits, for messages (t, h).
 inline std::string g6(double x) {

@@ -15,11 +15,9 @@
 #include <cvode/cvode_ls.h>
 #include <sunnonlinsol/sunnonlinsol_fixedpoint.h>
 
-#include <cmath>
 #include <memory>
 #include <string>
 
-#include "dae/constraint_stats.h"
 #include "integrators/sundials_ode.h"
 
 namespace evas {
@@ -67,76 +65,37 @@ class CvodeIntegrator final : public SundialsOdeIntegrator {
     t_ = t0;
   }
 
-  void advance(double tout, bool land, Vec& q, Vec& v) override {
-    WallTimer timer(total_.wall_seconds);
-    if (!mem_) throw RunError("cvode: advance() before init()");
-    last_error_.clear();
-    if (!(tout > t_)) {
-      throw RunError("cvode: output time " + format_number(tout) + " s is not after " +
-                     format_number(t_) + " s");
-    }
-    const double tstop = land ? tout : p_->next_stop(t_);
-    if (std::isfinite(tstop) && tstop > current_time())
-      check(CVodeSetStopTime(mem_, tstop), "CVodeSetStopTime");
-
-    const bool exact = sundials::step_to(
-        tout, s_.max_steps, CV_TSTOP_RETURN, total_,
-        [&](double& tret) { return CVode(mem_, tout, y_.get(), &tret, CV_ONE_STEP); },
-        [&] {
-          double h = 0.0;
-          CVodeGetLastStep(mem_, &h);
-          return h;
-        },
-        [&] { return current_time(); },
-        [&](int flag, const std::string& why) {
-          fail(flag < 0 ? sundials::flag_name(CVodeGetReturnFlagName(flag)) : why);
-        },
-        [&](double t, double h) { step_done(t, h); });
-    if (!exact) {
-      const int flag = CVodeGetDky(mem_, tout, 0, ytmp_.get());
-      if (flag < 0) fail(sundials::flag_name(CVodeGetReturnFlagName(flag)));
-      get_state(ytmp_.data(), q, v);
-    } else {
-      get_state(y_.data(), q, v);
-    }
-    t_ = tout;
-    if (p_->constraint_count() > 0) dae::note_constraints(*p_, tout, q, v, total_);
-  }
-
-  void restart(double t, const Vec& q, const Vec& v) override {
-    WallTimer timer(total_.wall_seconds);
-    if (!mem_) throw RunError("cvode: restart() before init()");
-    // CVodeReInit resets CVODE's counters: bank them first.
-    sundials::add_segment(total_, segment());
-    ++total_.restarts;
-    set_state(q, v);
-    check(CVodeReInit(mem_, t, y_.get()), "CVodeReInit");
-    t_ = t;
-  }
-
-  IntegratorStats stats() const override {
-    IntegratorStats out = total_;
-    out.refused_states = guard_.recoverable;
-    if (!mem_) return out;
-    sundials::add_segment(out, segment());
-    double h = 0.0;
-    int order = 0;
-    CVodeGetLastStep(mem_, &h);
-    CVodeGetLastOrder(mem_, &order);
-    out.last_step = h;
-    out.last_order = order;
-    return out;
-  }
-
  private:
-  double current_time() const {
+  bool has_solver() const override { return mem_ != nullptr; }
+  int solver_step(double tout, double& tret) override {
+    return CVode(mem_, tout, y_.get(), &tret, CV_ONE_STEP);
+  }
+  int solver_set_stop(double tstop) override { return CVodeSetStopTime(mem_, tstop); }
+  int solver_dky(double t, N_Vector out) const override { return CVodeGetDky(mem_, t, 0, out); }
+  double solver_time() const override {
     double tn = t_;
     CVodeGetCurrentTime(mem_, &tn);
     return tn;
   }
+  double solver_last_step() const override {
+    double h = 0.0;
+    CVodeGetLastStep(mem_, &h);
+    return h;
+  }
+  int solver_last_order() const override {
+    int order = 0;
+    CVodeGetLastOrder(mem_, &order);
+    return order;
+  }
+  int solver_reinit(double t) override { return CVodeReInit(mem_, t, y_.get()); }
+  std::string solver_flag_name(int flag) const override {
+    return sundials::flag_name(CVodeGetReturnFlagName(flag));
+  }
+  int tstop_return() const override { return CV_TSTOP_RETURN; }
+  std::string failure_head() const override { return "cvode (" + s_.method + ")"; }
 
   // Counters since the last CVodeInit/CVodeReInit.
-  IntegratorStats segment() const {
+  IntegratorStats segment() const override {
     IntegratorStats s;
     long nni = 0;
     CVodeGetNumSteps(mem_, &s.steps);
@@ -154,21 +113,6 @@ class CvodeIntegrator final : public SundialsOdeIntegrator {
     CVodeGetNumErrTestFails(mem_, &s.error_test_failures);
     CVodeGetNumNonlinSolvConvFails(mem_, &s.convergence_failures);
     return s;
-  }
-
-  void check(int flag, const char* what) {
-    if (flag < 0) {
-      throw RunError(std::string("cvode: ") + what + " failed with " +
-                     sundials::flag_name(CVodeGetReturnFlagName(flag)) +
-                     (last_error_.empty() ? "" : " (" + last_error_ + ")"));
-    }
-  }
-
-  [[noreturn]] void fail(const std::string& why) {
-    const double tn = current_time();
-    const double* y = y_.data();
-    if (CVodeGetDky(mem_, tn, 0, ytmp_.get()) == CV_SUCCESS) y = ytmp_.data();
-    throw RunError(failure("cvode (" + s_.method + ")", why, tn, y));
   }
 
   void free_memory() {

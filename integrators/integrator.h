@@ -59,6 +59,10 @@ struct IntegratorSettings {
   std::string method = "bdf";  ///< cvode: "bdf" or "adams"
   /// arkode: the Runge-Kutta table by ARKODE's name (implicit DIRK/ESDIRK or explicit ERK)
   std::string table = "ARKODE_ESDIRK324L2SA_4_2_3";
+  /// arkode: the additive split, "none" (the table on all of g), "body" (the
+  /// bodies' own modal stiffness and damping implicit, every other force
+  /// explicit) or "elements" (the reverse)
+  std::string imex = "none";
   double rho_inf = 0.8;       ///< generalized-alpha spectral radius at infinity, [0, 1]
   double balance_tol = 1e-3;  ///< linear-acceleration: balance error tolerance (0.1 %)
   int max_iterations = 50;    ///< fixed-point / Newton iterations per step

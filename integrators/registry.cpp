@@ -21,7 +21,7 @@ const std::vector<Entry>& builtin_entries() {
   static const std::vector<Entry> table = {
       ida_entry(),    cvode_entry(),     generalized_alpha_entry(), linear_acceleration_entry(),
       radau_entry(),  hht_alpha_entry(), newmark_entry(),           central_difference_entry(),
-      arkode_entry(),
+      arkode_entry(), bathe_entry(),
   };
   return table;
 }

@@ -204,6 +204,15 @@ const std::vector<Entry>& table() {
             "ARKODE_DORMAND_PRINCE_7_4_5); docs/study.md lists them";
         return e;
       }(),
+      choice("imex",
+             "arkode's additive (IMEX) split with an ARK pair's table (e.g. "
+             "ARKODE_ARK324L2SA_DIRK_4_2_3): none; body = the bodies' own modal stiffness and "
+             "damping implicit (linear; linear_solver=second-order), every other force explicit; "
+             "elements = the reverse (linear_solver klu or dense)",
+             &S::imex,
+             [] {
+               return std::vector<std::string>{"none", "body", "elements"};
+             }),
       integer("max_order", "largest order, 0 = the solver's (5 BDF, 12 Adams)", &S::max_order, 0,
               12),
       number("newton_coefficient",

@@ -1,6 +1,9 @@
 #include "integrators/sundials_ode.h"
 
 #include <algorithm>
+#include <cmath>
+
+#include "dae/constraint_stats.h"
 
 namespace evas {
 
@@ -81,10 +84,68 @@ int SundialsOdeIntegrator::jacobian(double t, N_Vector y, SUNMatrix J) {
   });
 }
 
-std::string SundialsOdeIntegrator::failure(const std::string& head, const std::string& why,
-                                           double tn, const double* y) const {
-  return sundials::failure_message(head, why, tn, last_error_, guard_) +
-         "; state: " + p_->describe_state(tn, y, y + n_);
+void SundialsOdeIntegrator::advance(double tout, bool land, Vec& q, Vec& v) {
+  WallTimer timer(total_.wall_seconds);
+  if (!has_solver()) throw RunError(name() + ": advance() before init()");
+  last_error_.clear();
+  if (!(tout > t_)) {
+    throw RunError(name() + ": output time " + format_number(tout) + " s is not after " +
+                   format_number(t_) + " s");
+  }
+  const double tstop = land ? tout : p_->next_stop(t_);
+  if (std::isfinite(tstop) && tstop > solver_time())
+    check(solver_set_stop(tstop), "setting the stop time");
+
+  const bool exact = sundials::step_to(
+      tout, s_.max_steps, tstop_return(), total_,
+      [&](double& tret) { return solver_step(tout, tret); }, [&] { return solver_last_step(); },
+      [&] { return solver_time(); },
+      [&](int flag, const std::string& why) { fail(flag < 0 ? solver_flag_name(flag) : why); },
+      [&](double t, double h) { step_done(t, h); });
+  if (!exact) {
+    const int flag = solver_dky(tout, ytmp_.get());
+    if (flag < 0) fail(solver_flag_name(flag));
+    get_state(ytmp_.data(), q, v);
+  } else {
+    get_state(y_.data(), q, v);
+  }
+  t_ = tout;
+  if (p_->constraint_count() > 0) dae::note_constraints(*p_, tout, q, v, total_);
+}
+
+void SundialsOdeIntegrator::restart(double t, const Vec& q, const Vec& v) {
+  WallTimer timer(total_.wall_seconds);
+  if (!has_solver()) throw RunError(name() + ": restart() before init()");
+  sundials::add_segment(total_, segment());  // (re-initialization resets the counters)
+  ++total_.restarts;
+  set_state(q, v);
+  check(solver_reinit(t), "re-initialization");
+  t_ = t;
+}
+
+IntegratorStats SundialsOdeIntegrator::stats() const {
+  IntegratorStats out = total_;
+  out.refused_states = guard_.recoverable;
+  if (!has_solver()) return out;
+  sundials::add_segment(out, segment());
+  out.last_step = solver_last_step();
+  out.last_order = solver_last_order();
+  return out;
+}
+
+void SundialsOdeIntegrator::check(int flag, const char* what) const {
+  if (flag < 0) {
+    throw RunError(name() + ": " + what + " failed with " + solver_flag_name(flag) +
+                   (last_error_.empty() ? "" : " (" + last_error_ + ")"));
+  }
+}
+
+void SundialsOdeIntegrator::fail(const std::string& why) const {
+  const double tn = solver_time();
+  const double* y = y_.data();
+  if (solver_dky(tn, ytmp_.get()) >= 0) y = ytmp_.data();
+  throw RunError(sundials::failure_message(failure_head(), why, tn, last_error_, guard_) +
+                 "; state: " + p_->describe_state(tn, y, y + n_));
 }
 
 void SundialsOdeIntegrator::error_cb(int /*code*/, const char* module, const char* function,

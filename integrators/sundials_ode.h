@@ -3,8 +3,9 @@
 // (ARKODE's ARKStep). The problem they integrate (constraints only as penalty
 // forces, no mass matrix), the state vector and its packing, the Jacobian
 // callback's body (the 2n x 2n matrix, or K and C for the second-order
-// solver), and the failure message with the model's last refusal and state.
-// Each adapter keeps its own solver memory and calls.
+// solver), the failure message with the model's last refusal and state, and
+// the stepping to outputs and stops (advance, restart, stats) on the solver's
+// calls, which each adapter gives (its own solver memory: the solver_* hooks).
 #pragma once
 
 #include <memory>
@@ -22,7 +23,41 @@ class SundialsOdeIntegrator : public Integrator {
  public:
   bool takes_internal_states() const override { return true; }
 
+  /// One internal step at a time to tout (sundials::step_to), landing on
+  /// stops (the solver's stop time) and interpolating outputs between steps.
+  void advance(double tout, bool land, Vec& q, Vec& v) override;
+  /// A new start at (t, q, v); the counters of the segment before are banked
+  /// (the solver's re-initialization resets them).
+  void restart(double t, const Vec& q, const Vec& v) override;
+  IntegratorStats stats() const override;
+
  protected:
+  // ---- the solver's calls (each adapter's) ----
+  virtual bool has_solver() const = 0;
+  /// One internal step towards tout (the solver's ONE_STEP mode); its flag.
+  virtual int solver_step(double tout, double& tret) = 0;
+  virtual int solver_set_stop(double tstop) = 0;
+  /// The dense output y(t) into out; the solver's flag.
+  virtual int solver_dky(double t, N_Vector out) const = 0;
+  virtual double solver_time() const = 0;
+  virtual double solver_last_step() const = 0;
+  virtual int solver_last_order() const = 0;
+  /// Re-initializes at (t, y_) after a restart.
+  virtual int solver_reinit(double t) = 0;
+  virtual std::string solver_flag_name(int flag) const = 0;
+  /// The flag of a return at the stop time (CV_TSTOP_RETURN, ARK_TSTOP_RETURN).
+  virtual int tstop_return() const = 0;
+  /// Counters since the last (re-)initialization.
+  virtual IntegratorStats segment() const = 0;
+  /// "cvode (bdf)", "arkode (TABLE)": the head of a failure message.
+  virtual std::string failure_head() const = 0;
+
+  /// Throws RunError "<name>: <what> failed with <flag> (<last message>)" for
+  /// a negative flag.
+  void check(int flag, const char* what) const;
+  /// Throws RunError with the reason, the time and the state where it stopped.
+  [[noreturn]] void fail(const std::string& why) const;
+
   /// The problem as an ODE: penalty forces for constraints (formulation=
   /// penalty, else refused), a mass matrix refused, the first-order form, y
   /// and ytmp made and y set to (q0, v0, z0). `who` names the adapter.
@@ -42,11 +77,6 @@ class SundialsOdeIntegrator : public Integrator {
   /// dg/dy into J, or K and C alone for the second-order solver (which forms
   /// I - gamma J itself through the matrix's scaleaddi).
   int jacobian(double t, N_Vector y, SUNMatrix J);
-
-  /// "<head>: <why> at t = ... s (solver message); the model refused ...;
-  /// state: ..." with the state y at tn.
-  std::string failure(const std::string& head, const std::string& why, double tn,
-                      const double* y) const;
 
   /// SUNDIALS' error handler: keeps the last message.
   static void error_cb(int code, const char* module, const char* function, char* msg, void* user);

@@ -116,8 +116,12 @@ std::string work_precision_script(const WorkPrecisionData& d, const std::filesys
   for (const auto& f : order) legend.push_back(without_keys(f, common_keys));
   std::string shared;
   for (const auto& w : common) shared += (shared.empty() ? "" : " ") + w;
-  // one legend for both panels, in two columns below them
-  const int key_rows = static_cast<int>((order.size() + 1) / 2);
+  // one legend for both panels below them: in two columns, or in one when a
+  // label is too long for half the width (the second column was cut off)
+  std::size_t longest = 0;
+  for (const auto& l : legend) longest = std::max(longest, l.size());
+  const bool one_column = longest > 70;
+  const int key_rows = static_cast<int>(one_column ? order.size() : (order.size() + 1) / 2);
   std::ostringstream gp;
   gp << "# work-precision figure of " << d.scene_name << " (evas study)\n"
      << gp_terminal(out, 1400, 560 + 18 * key_rows);

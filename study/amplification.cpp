@@ -358,10 +358,15 @@ std::vector<AmplificationCase> amplification_study(const std::vector<std::string
     md << "| " << k << " | " << c.label << " | "
        << (unstable ? field(stable_to) : "all (" + field(c.points.back().h_over_T) + ")") << " | "
        << field(c.points.back().spectral_radius) << " | case" << k << "/amplification.csv |\n";
+    // gnuplot's eight colours repeat from the ninth case on: a dash and a
+    // point type of their own tell those cases apart
+    const int round = static_cast<int>(k / 8);
+    const int point_type[] = {7, 5, 9, 11, 13};
     for (int panel = 0; panel < 3; ++panel)
       gp[panel] << (gp[panel].tellp() > 0 ? ", " : "plot ")
                 << gp_quote("case" + std::to_string(k) + "/amplification.csv")
-                << " using 1:" << panel + 2 << " with linespoints lw 2 pt 7 ps 0.5 title "
+                << " using 1:" << panel + 2 << " with linespoints lw 2 dt " << round % 5 + 1
+                << " pt " << point_type[round % 5] << " ps " << (round > 0 ? 0.8 : 0.5) << " title "
                 << gp_quote(c.label);
   }
   {

@@ -9,13 +9,14 @@
 // clang-format on
 
 #include <Eigen/Dense>
+#include <cmath>
 #include <complex>
-#include <fstream>
-#include <map>
-#include <sstream>
+#include <iostream>
 
+#include "engine_compare.h"
 #include "integrators/settings.h"
 #include "run_faults_support.h"
+#include "sdof_run.h"
 #include "study/amplification.h"
 
 using namespace evas;
@@ -43,25 +44,6 @@ Cx stability_function(const std::string& name, bool implicit, Cx z) {
   ARKodeButcherTable_Free(t);
   const Eigen::VectorXcd k = M.partialPivLu().solve(Eigen::VectorXcd::Ones(s));
   return 1.0 + z * b.dot(k);  // (b real: dot's conjugate changes nothing)
-}
-
-// The columns of a results.csv by channel name (the header's unit dropped).
-std::map<std::string, std::vector<double>> read_csv_columns(const fs::path& path) {
-  std::ifstream in(path);
-  std::string line;
-  std::getline(in, line);
-  std::vector<std::string> names;
-  std::istringstream head(line);
-  for (std::string cell; std::getline(head, cell, ',');)
-    names.push_back(cell.substr(0, cell.find('[')));
-  std::map<std::string, std::vector<double>> out;
-  while (std::getline(in, line)) {
-    std::istringstream row(line);
-    std::size_t k = 0;
-    for (std::string cell; std::getline(row, cell, ',') && k < names.size(); ++k)
-      out[names[k]].push_back(std::stod(cell));
-  }
-  return out;
 }
 
 IntegratorSettings arkode(const std::string& table) {
@@ -124,38 +106,82 @@ TEST(Arkode, SettingsAndRefusals) {
   EXPECT_TRUE(takes_fixed_steps(s));
 }
 
+// The additive pair ARK3(2)4L[2]SA (Kennedy & Carpenter 2003) at fixed steps
+// on the forced, damped oscillators of sdof_problem.h, split both ways:
+// imex=body (the oscillators' own stiffness and damping implicit, their
+// forcing explicit) and imex=elements (the reverse): the additive method
+// keeps its order 3 in either.
+TEST(Arkode, ImexPairKeepsItsOrder) {
+  for (const std::string split : {"body", "elements"}) {
+    SCOPED_TRACE(split);
+    IntegratorSettings s = arkode("ARKODE_ARK324L2SA_DIRK_4_2_3");
+    apply_setting_assignment(s, "imex=" + split);
+    apply_setting_assignment(s,
+                             split == "body" ? "linear_solver=second-order" : "linear_solver=klu");
+    apply_setting_assignment(s, "step_control=fixed");
+    s.rtol = 1e-12;  // (the stages' Newton iteration far below the truncation error)
+    s.atol = 1e-14;
+    double e[3];
+    for (int k = 0; k < 3; ++k) {
+      s.step = 0.004 / std::pow(2.0, k);
+      test::SdofProblem p(test::oscillators(), true);
+      e[k] = test::run_sdof(s, p, {1.0}).q;
+    }
+    const double o1 = std::log2(e[0] / e[1]), o2 = std::log2(e[1] / e[2]);
+    std::cout << "ARK324 imex=" << split << " |q err|(t=1): " << e[0] << ", " << e[1] << ", "
+              << e[2] << "; orders " << o1 << ", " << o2 << "\n";
+    EXPECT_GE(o2, 2.7);
+    EXPECT_LE(o2, 3.3);
+  }
+}
+
+// imex=body refuses a table that is no additive pair's half, a linear solver
+// other than second-order, and a problem without a body part, each naming why.
+TEST(Arkode, ImexRefusals) {
+  auto refusal = [](IntegratorSettings s, bool body_part) {
+    test::SdofProblem p(test::oscillators(), body_part);
+    try {
+      test::run_sdof(s, p, {0.1});
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("(accepted)");
+  };
+  IntegratorSettings s = arkode("ARKODE_ESDIRK324L2SA_4_2_3");
+  apply_setting_assignment(s, "imex=body");
+  apply_setting_assignment(s, "linear_solver=second-order");
+  EXPECT_NE(refusal(s, true).find("additive pair"), std::string::npos) << refusal(s, true);
+  apply_setting_assignment(s, "table=ARKODE_ARK436L2SA_ERK_6_3_4");
+  EXPECT_EQ(refusal(s, true), "(accepted)");
+  EXPECT_NE(refusal(s, false).find("modal bodies"), std::string::npos) << refusal(s, false);
+  apply_setting_assignment(s, "linear_solver=klu");
+  EXPECT_NE(refusal(s, true).find("second-order"), std::string::npos) << refusal(s, true);
+  apply_setting_assignment(s, "imex=elements");
+  EXPECT_EQ(refusal(s, true), "(accepted)");
+  apply_setting_assignment(s, "linear_solver=second-order");
+  EXPECT_NE(refusal(s, true).find("klu or dense"), std::string::npos) << refusal(s, true);
+}
+
 // The paper's engine (validation/engine/engine.yaml, Case 1) to t = 0.01 s
 // with the default implicit table and the second-order linear solver: the main
 // bearing loads within 1 % of their swing of IDA's at rtol 1e-7.
 TEST(Arkode, RunsThePapersEngine) {
   TempFolder tmp;
-  const std::string scene =
-      (fs::path(EVAS_SOURCE_DIR) / "validation" / "engine" / "engine.yaml").string();
-  const Outcome ref =
-      run_evas({"run", scene, "--param", "time.end=0.01", "--set", "rtol=1e-7", "--set",
-                "atol=1e-11", "--csv", "--out", (tmp.path() / "ida").string()},
-               tmp.path() / "ida.log");
+  const auto ref = engine_compare::run_engine_reference(tmp.path() / "ida");
   ASSERT_EQ(ref.code, 0) << ref.log;
-  const Outcome ark =
-      run_evas({"run", scene, "--param", "time.end=0.01", "--integrator", "arkode", "--set",
-                "rtol=1e-5", "--set", "atol=1e-9", "--set", "linear_solver=second-order", "--csv",
-                "--out", (tmp.path() / "ark").string()},
-               tmp.path() / "ark.log");
+  const auto ark = engine_compare::run_engine_briefly(
+      tmp.path() / "ark", {"--integrator", "arkode", "--set", "rtol=1e-5", "--set", "atol=1e-9",
+                           "--set", "linear_solver=second-order"});
   ASSERT_EQ(ark.code, 0) << ark.log;
-  const auto a = read_csv_columns(tmp.path() / "ida" / "results.csv");
-  const auto b = read_csv_columns(tmp.path() / "ark" / "results.csv");
-  for (const std::string ch : {"main1.fx", "main3.fy", "main5.fy"}) {
-    SCOPED_TRACE(ch);
-    ASSERT_TRUE(a.count(ch) && b.count(ch));
-    const auto& x = a.at(ch);
-    const auto& y = b.at(ch);
-    ASSERT_EQ(x.size(), y.size());
-    double lo = x[0], hi = x[0], diff = 0.0;
-    for (std::size_t i = 0; i < x.size(); ++i) {
-      lo = std::min(lo, x[i]);
-      hi = std::max(hi, x[i]);
-      diff = std::max(diff, std::abs(x[i] - y[i]));
-    }
-    EXPECT_LT(diff, 0.01 * (hi - lo)) << "swing " << hi - lo;
+  engine_compare::expect_main_bearings_within(ref.columns, ark.columns, 0.01, "ESDIRK3(2)");
+  // the additive pair ARK3(2)4L[2]SA split both ways: the same bound
+  for (const std::string split : {"body", "elements"}) {
+    const auto imex = engine_compare::run_engine_briefly(
+        tmp.path() / ("imex-" + split),
+        {"--integrator", "arkode", "--set", "table=ARKODE_ARK324L2SA_DIRK_4_2_3", "--set",
+         "imex=" + split, "--set", "rtol=1e-5", "--set", "atol=1e-9", "--set",
+         split == "body" ? "linear_solver=second-order" : "linear_solver=klu"});
+    ASSERT_EQ(imex.code, 0) << imex.log;
+    engine_compare::expect_main_bearings_within(ref.columns, imex.columns, 0.01, "imex=" + split);
   }
 }

@@ -97,7 +97,11 @@ INSTANTIATE_TEST_SUITE_P(
                       FixedCase{"generalized-alpha rho=1.0", "generalized-alpha", 1.0, true},
                       FixedCase{"linear-acceleration body", "linear-acceleration", 0.0, true},
                       FixedCase{"linear-acceleration fixed-point", "linear-acceleration", 0.0,
-                                false}),
+                                false},
+                      // the rho_inf-Bathe composite method (Noh & Bathe 2019): second order
+                      FixedCase{"bathe rho=0.0", "bathe", 0.0, true},
+                      FixedCase{"bathe rho=0.6", "bathe", 0.6, true},
+                      FixedCase{"bathe rho=1.0", "bathe", 1.0, true}),
     [](const ::testing::TestParamInfo<FixedCase>& info) {
       std::string n = info.param.label;
       for (char& ch : n)
@@ -258,7 +262,8 @@ INSTANTIATE_TEST_SUITE_P(
                                settings("generalized-alpha", "klu", "bdf", 0.0), 1e-3},
                       StopCase{"generalized-alpha rho=1.0",
                                settings("generalized-alpha", "klu", "bdf", 1.0), 1e-3},
-                      StopCase{"linear-acceleration", settings("linear-acceleration"), 1e-3}),
+                      StopCase{"linear-acceleration", settings("linear-acceleration"), 1e-3},
+                      StopCase{"bathe rho=0.0", settings("bathe", "klu", "bdf", 0.0), 1e-3}),
     [](const ::testing::TestParamInfo<StopCase>& info) {
       std::string n = info.param.label;
       for (char& ch : n)
@@ -451,7 +456,7 @@ TEST(SdofNewmark, VelocityErrorCoefficientMatchesTheMethod) {
 
 TEST(SdofRegistry, NamesAndUnknown) {
   const auto names = integrator_names();
-  ASSERT_EQ(names.size(), 9u);
+  ASSERT_EQ(names.size(), 10u);
   for (const auto& n : names) EXPECT_EQ(make_integrator(n)->name(), n);
   EXPECT_THROW(make_integrator("rk4"), InputError);
 }

@@ -221,7 +221,7 @@ TEST(StudyCaseGrid, AKeyNoCaseReadsIsAnInputError) {
   std::string msg = input_error([&] { expand_case("ida step=1e-5,2e-5", base); });
   EXPECT_NE(msg.find("--case 'ida step=1e-5,2e-5': 'step': ida does not read it "
                      "(generalized-alpha, linear-acceleration, radau, hht-alpha, newmark, "
-                     "central-difference, arkode do)"),
+                     "central-difference, arkode, bathe do)"),
             std::string::npos)
       << msg;
   msg = input_error([&] { expand_case("radau rtol=1e-4 max_steps=100", base); });

@@ -48,5 +48,7 @@ for c in $cases; do
     --case "hht-alpha alpha=-0.1 step=2e-5,1e-5,5e-6,2.5e-6" \
     --case "newmark step=2e-5,1e-5,5e-6,2.5e-6" \
     --case "central-difference step=5e-6,2.5e-6" \
-    --case "arkode linear_solver=second-order rtol=1e-3..1e-5/3"
+    --case "arkode linear_solver=second-order rtol=1e-3..1e-5/3" \
+    --case "arkode table=ARKODE_ARK324L2SA_DIRK_4_2_3 imex=elements linear_solver=klu rtol=1e-4" \
+    --case "bathe step=2e-5,1e-5,5e-6"
 done
