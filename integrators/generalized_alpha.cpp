@@ -29,14 +29,7 @@ class GeneralizedAlpha final : public NewmarkDaeIntegrator {
     if (!(rho >= 0.0 && rho <= 1.0))
       throw InputError("generalized-alpha: rho_inf must be in [0, 1] (got " + format_number(rho) +
                        ")");
-    Parameters p;
-    p.alpha_m = (2.0 * rho - 1.0) / (rho + 1.0);
-    p.alpha_f = rho / (rho + 1.0);
-    p.gamma = 0.5 - p.alpha_m + p.alpha_f;
-    p.beta = 0.25 * (1.0 - p.alpha_m + p.alpha_f) * (1.0 - p.alpha_m + p.alpha_f);
-    p.balance = false;
-    p.iteration = Iteration::effective_mass;
-    return p;
+    return alpha_method((2.0 * rho - 1.0) / (rho + 1.0), rho / (rho + 1.0));
   }
   bool index3_formulation(const std::string& f) const override {
     return f == "default" || f == "index-3";

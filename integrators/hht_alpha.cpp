@@ -25,14 +25,7 @@ class HhtAlpha final : public NewmarkDaeIntegrator {
  protected:
   Parameters parameters() const override {
     const double alpha = own_setting(s_, "alpha");
-    Parameters p;
-    p.alpha_m = 0.0;
-    p.alpha_f = -alpha;
-    p.gamma = 0.5 - alpha;
-    p.beta = 0.25 * (1.0 - alpha) * (1.0 - alpha);
-    p.balance = false;
-    p.iteration = Iteration::effective_mass;
-    return p;
+    return alpha_method(0.0, -alpha);  // gamma = 1/2 - alpha, beta = (1 - alpha)^2 / 4
   }
   bool index3_formulation(const std::string& f) const override {
     return f == "default" || f == "index-3";

@@ -405,6 +405,17 @@ double NewmarkIntegrator::algebraic_amplification(const Parameters& par) {
   return std::max(std::abs(0.5 * (tr + r)), std::abs(0.5 * (tr - r)));
 }
 
+NewmarkIntegrator::Parameters NewmarkIntegrator::alpha_method(double alpha_m, double alpha_f) {
+  Parameters p;
+  p.alpha_m = alpha_m;
+  p.alpha_f = alpha_f;
+  p.gamma = 0.5 - alpha_m + alpha_f;
+  p.beta = 0.25 * (1.0 - alpha_m + alpha_f) * (1.0 - alpha_m + alpha_f);
+  p.balance = false;
+  p.iteration = Iteration::effective_mass;
+  return p;
+}
+
 double NewmarkIntegrator::velocity_error_coefficient(const Parameters& par) {
   const double am = par.alpha_m, af = par.alpha_f, d = am - af;
   const double kappa = 0.5 * (1.0 - af) - (1.0 - am) * (d + 0.5);

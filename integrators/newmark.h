@@ -106,6 +106,12 @@ class NewmarkIntegrator : public FixedStepIntegrator {
   /// c_v of the local velocity error c_v h^3 q'''' (see above): kappa +
   /// gamma (1/2 + alpha_m - alpha_f) - 1/6; 1/12 for linear acceleration.
   static double velocity_error_coefficient(const Parameters& par);
+  /// The generalized-alpha family's second-order member for alpha_m, alpha_f
+  /// with the most high-frequency damping (Chung & Hulbert 1993, eqs. 17 and
+  /// 21): gamma = 1/2 - alpha_m + alpha_f, beta = (1 - alpha_m + alpha_f)^2 / 4;
+  /// increment convergence, the effective-mass iteration (generalized-alpha,
+  /// HHT-alpha).
+  static Parameters alpha_method(double alpha_m, double alpha_f);
   bool takes_quasi_static() const override { return true; }
   /// Spectral radius of the Newmark relations' recursion for a coordinate
   /// without inertia (newmark.cpp): at or above 1 quasi-static modes are refused.
