@@ -53,5 +53,7 @@ int cmd_report(const std::vector<std::string>& args);
 int cmd_study(const std::vector<std::string>& args);
 /// `evas problem NAME`: the DAE test problems (apps/cmd_problem.cpp, problems/library.h).
 int cmd_problem(const std::vector<std::string>& args);
+/// `evas bearing`: the static answer of one journal bearing (apps/cmd_bearing.cpp).
+int cmd_bearing(const std::vector<std::string>& args);
 
 }  // namespace evas::cli

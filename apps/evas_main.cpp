@@ -36,6 +36,8 @@ const char* kUsage =
     "                      sweep (operating points, Campbell diagram), budget (error\n"
     "                      budget), compare (two study tables)\n"
     "  problem NAME        DAE test problems (andrews, car-axis, ...) scored in digits\n"
+    "  bearing             the static answer of one journal bearing (film short, finite,\n"
+    "                      reynolds): eccentricity, Sommerfeld number, K and C\n"
     "\n"
     "`evas <command> --help` describes the options of each command.\n"
     "`--plugin SPEC` (any command, repeatable) and EVAS_PLUGINS load integrator\n"
@@ -114,6 +116,7 @@ int main(int argc, char** argv) {
     if (cmd == "report") return evas::cli::cmd_report(args);
     if (cmd == "study") return evas::cli::cmd_study(args);
     if (cmd == "problem") return evas::cli::cmd_problem(args);
+    if (cmd == "bearing") return evas::cli::cmd_bearing(args);
   } catch (const boost::program_options::error& e) {
     std::cerr << "evas " << cmd << ": " << e.what() << " (see `evas " << cmd << " --help`)\n";
     return 1;

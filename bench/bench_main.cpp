@@ -6,6 +6,7 @@
 //  3. The paper's engine, Case 1 and Case 2 (bench/bench_engine.h).
 //  4. Scaling of the engine's cost per step with modes and elements
 //     (bench/bench_scaling.h).
+//  5. The journal bearing's film models per evaluation (bench/bench_film.h).
 // usage: evas_bench [OUT.md] [ENGINE.yaml] (default validation/engine/engine.yaml,
 // relative to the working directory: `make bench` runs it from the source tree)
 // Times are the minimum over repeats after a warm-up; ratios measured in one run
@@ -20,6 +21,7 @@
 #include "../tests/random_body.h"
 #include "bench_baseline.h"
 #include "bench_engine.h"
+#include "bench_film.h"
 #include "bench_periodic.h"
 #include "bench_quasi_static.h"
 #include "bench_scaling.h"
@@ -210,6 +212,11 @@ int main(int argc, char** argv) {
     std::cout << bench::quasi_static_table(argc > 2 ? argv[2] : "validation/engine/engine.yaml");
     return 0;
   }
+  // `evas_bench --films`: the film models' cost per evaluation alone, to stdout
+  if (argc > 1 && std::string(argv[1]) == "--films") {
+    std::cout << bench::film_cost_table();
+    return 0;
+  }
   const std::string out = argc > 1 ? argv[1] : "";
   const std::string engine = argc > 2 ? argv[2] : "validation/engine/engine.yaml";
   // the evas of 2026-11-24 and its engine scene (bench/baseline.sh)
@@ -234,6 +241,12 @@ int main(int argc, char** argv) {
          "paper's sums over nodes, costs O(N n). Both give the same vector (checked in the "
          "run, relative difference < 1e-9, and in `tests/test_invariants.cpp`).\n\n"
       << residual_table() << "\n"
+      << "## The journal bearing's film models: cost per evaluation\n\n"
+      << "The validation engine's main bearing at 3000 rpm, averaged over 64 states "
+         "(eccentricity ratio 0.05 to 0.95, every direction, a squeeze velocity); set-up is "
+         "the element's construction (the table's Reynolds solves). "
+         "docs/elements-journal-bearing.md, \"Film models\".\n\n"
+      << bench::film_cost_table() << "\n"
       << "## IDA: dense LU, KLU and the second-order solver as the number of modes grows\n\n"
       << "A chain of 8 flexible bodies (6 rigid + elastic modes each), the first spinning at "
          "50 rad/s, neighbours coupled by spring-dampers, 0.1 s simulated, rtol 1e-6, atol "

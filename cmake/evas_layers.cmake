@@ -8,6 +8,7 @@
 #                             their names; EVAS_ROOT is the source tree.
 # Used by the top-level CMakeLists.txt and by fuzz/CMakeLists.txt (the sanitized
 # build of the same layers).
+include(${CMAKE_CURRENT_LIST_DIR}/evas_pch.cmake)
 
 # layer, then the layers it may include and link (direct ones; the check
 # allows the whole closure below them)
@@ -89,6 +90,7 @@ function(evas_add_layers prefix)
     _evas_check_layer_includes(${layer})
     file(GLOB sources CONFIGURE_DEPENDS ${EVAS_ROOT}/${layer}/*.cpp)
     add_library(${prefix}_${layer} STATIC ${sources})
+    evas_precompile(${prefix}_layers ${prefix}_${layer})
     foreach(d ${EVAS_LAYER_DIRECT_${layer}})
       target_link_libraries(${prefix}_${layer} PUBLIC ${prefix}_${d})
     endforeach()

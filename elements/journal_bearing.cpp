@@ -22,6 +22,7 @@
 #include <limits>
 #include <sstream>
 
+#include "elements/film_finite.h"
 #include "elements/param_binding.h"
 
 namespace evas {
@@ -135,10 +136,70 @@ JournalBearing::JournalBearing(std::string name, std::vector<int> markers,
     stations_ = {{0.0, 1.0}};
   }
   gauss_legendre(p_.n_delta, gl_x_, gl_w_);
+  const std::string where = "journal bearing '" + this->name() + "'";
+  if (p_.film == "finite") {
+    film_ = Film::Finite;
+    const double bd = p_.width / (2.0 * p_.radius);
+    if (bd < kFiniteFilmMinWidthRatio || bd > kFiniteFilmMaxWidthRatio)
+      throw InputError(where + ": film 'finite' (Butenschoen's fit) holds for width ratios B/D " +
+                       fmt(kFiniteFilmMinWidthRatio) + " to " + fmt(kFiniteFilmMaxWidthRatio) +
+                       "; this bearing's is " + fmt(bd) + " (use film 'reynolds')");
+  } else if (p_.film == "reynolds") {
+    film_ = Film::Reynolds;
+    ReynoldsGrid g;
+    g.n_phi = p_.grid_phi;
+    g.n_axial = p_.grid_axial;
+    g.cavitation = p_.cavitation;
+    reynolds_ =
+        std::make_shared<const ReynoldsFilm>(p_.radius, p_.width, p_.clearance, p_.viscosity, g);
+    if (p_.table) {
+      if (!p_.cavitation)
+        throw InputError(where +
+                         ": solve 'table' needs cavitation 'swift-stieber' (the film "
+                         "without cavitation is linear in W: use solve 'grid')");
+      table_ = FilmTable::shared(reynolds_, p_.radius, p_.width, p_.clearance, p_.viscosity,
+                                 FilmTableSize{});
+    }
+  } else if (p_.film != "short") {
+    throw InputError(where + ": unknown film '" + p_.film + "' (short, finite, reynolds)");
+  }
 }
 
 FilmForce JournalBearing::hydro(const V2& e, const V2& ed, double om, double weight, bool derivs,
                                 bool closed_form) const {
+  if (film_ == Film::Short) return short_hydro(e, ed, om, weight, derivs, closed_form);
+  FilmForce r;
+  if (film_ == Film::Finite) {
+    r = finite_film(p_.radius, p_.width, p_.clearance, p_.viscosity, e, ed, om, derivs);
+  } else {
+    // the film is a function of e and W = ed - (om/2) J e (journal_bearing.h)
+    const V2 W = ed - 0.5 * om * perp(e);
+    M2 df_de, df_dW;
+    if (table_) {
+      const FilmForce t = table_->force(e, W, derivs);
+      r.f = t.f, df_de = t.df_de, df_dW = t.df_ded;
+    } else {
+      const ReynoldsSolution s = reynolds_->solve(e, W, derivs);
+      r.f = s.f, df_de = s.df_de, df_dW = s.df_dW;
+    }
+    if (derivs) {
+      r.df_ded = df_dW;
+      r.df_de = df_de - 0.5 * om * df_dW * J2();
+      r.df_dom = -0.5 * df_dW * perp(e);
+    }
+  }
+  // a station of weight w carries that share of the full-width film at its eccentricity
+  if (weight != 1.0) {
+    r.f *= weight;
+    r.df_de *= weight;
+    r.df_ded *= weight;
+    r.df_dom *= weight;
+  }
+  return r;
+}
+
+FilmForce JournalBearing::short_hydro(const V2& e, const V2& ed, double om, double weight,
+                                      bool derivs, bool closed_form) const {
   const double c = p_.clearance;
   const double K = p_.viscosity * p_.radius * (p_.width * p_.width * p_.width) * weight;
   const V2 W = ed - 0.5 * om * perp(e);
@@ -363,6 +424,20 @@ double JournalBearing::friction_torque(const V2& e, double om, const V2& f, doub
 }
 
 double JournalBearing::peak_pressure(const V2& e, const V2& ed, double om, double* angle) const {
+  if (film_ == Film::Reynolds) {
+    const ReynoldsSolution s = reynolds_->solve(e, ed - 0.5 * om * perp(e), false);
+    if (angle) *angle = s.p_max_angle;
+    return s.p_max;
+  }
+  const double p = short_peak_pressure(e, ed, om, angle);
+  if (film_ == Film::Short) return p;
+  // finite: no pressure field of its own; the short film's scaled to the finite film's force
+  const double fs = short_hydro(e, ed, om, 1.0, false, true).f.norm();
+  return fs > 0.0 ? p * hydro(e, ed, om, 1.0, false, true).f.norm() / fs : 0.0;
+}
+
+double JournalBearing::short_peak_pressure(const V2& e, const V2& ed, double om,
+                                           double* angle) const {
   const double c = p_.clearance;
   const V2 W = ed - 0.5 * om * perp(e);
   if (angle) *angle = 0.0;
@@ -510,7 +585,10 @@ ElementType journal_bearing_element_type() {
       "force on the journal, reaction on the bearing. Relative spin omega = (w_journal - "
       "w_bearing) . axis + journal_speed. Eccentricity ratio above eps_max: asperity contact "
       "force k_c (e - eps_max c)^n if contact_stiffness > 0, else a run error; e >= c is "
-      "always an error. See docs/elements-journal-bearing.md.";
+      "always an error. `film` chooses the film model: the paper's short film above "
+      "(default), Butenschoen's closed form for finite width, or Reynolds' equation on a grid "
+      "with the Swift-Stieber condition (solved at each evaluation or tabulated). See "
+      "docs/elements-journal-bearing.md.";
   t.num_markers = 2;
   using P = JournalBearingParams;
   static const ParamBinding<P> binding =
@@ -538,7 +616,28 @@ ElementType journal_bearing_element_type() {
           .number(&P::contact_exponent, "contact_exponent", "-", "exponent n of the contact law",
                   1.0, 10.0)
           .number(&P::journal_speed, "journal_speed", "rad/s",
-                  "spin added to the relative spin (journal bodies that carry no rotation)");
+                  "spin added to the relative spin (journal bodies that carry no rotation)")
+          .choice(&P::film, "film",
+                  "film model: 'short' = the paper's short bearing (Ocvirk, pi-film); 'finite' = "
+                  "Butenschoen's closed form for finite width (B/D 0.125 to 1); 'reynolds' = "
+                  "Reynolds' equation on a grid_phi x grid_axial grid",
+                  {"short", "finite", "reynolds"})
+          .flag(&P::cavitation, "cavitation",
+                "film 'reynolds': 'swift-stieber' = p >= 0 with the Reynolds (Swift-Stieber) "
+                "condition at the film's rupture; 'none' = the full Sommerfeld film (negative "
+                "pressures kept)",
+                {"swift-stieber", "none"}, "swift-stieber")
+          .whole(&P::grid_phi, "grid_phi", "-", "film 'reynolds': cells around the circumference",
+                 8, 4096)
+          .whole(&P::grid_axial, "grid_axial", "-",
+                 "film 'reynolds': cells on the half width (the film is symmetric about the "
+                 "mid-plane)",
+                 1, 1024)
+          .flag(&P::table, "solve",
+                "film 'reynolds': 'grid' = Reynolds' equation solved at every evaluation; "
+                "'table' = the same film tabulated once over the eccentricity ratio (to 0.99) "
+                "and the direction of W, interpolated (bicubic; the grid beyond 0.99)",
+                {"grid", "table"}, "table");
   t.params = binding.specs();
   t.make = [](const std::string& name, const std::vector<int>& markers, const ParamValues& v) {
     return std::make_unique<JournalBearing>(name, markers,

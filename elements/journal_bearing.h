@@ -1,5 +1,7 @@
 // Hydrodynamic journal bearing, short-bearing (Ocvirk) theory with the
-// pi-film (half-Sommerfeld) condition: paper section 3.2, Eq. 3, Figs. 5-6;
+// pi-film (half-Sommerfeld) condition (the default film; `film: finite |
+// reynolds` choose elements/film_finite.h or film_reynolds.h and film_table.h,
+// docs/elements-journal-bearing.md "Film models"): paper section 3.2, Eq. 3, Figs. 5-6;
 // formulation.md section 5; references.md section 1. Full derivation and the
 // sign conventions: docs/elements-journal-bearing.md.
 //
@@ -39,7 +41,12 @@
 #pragma once
 
 #include <array>
+#include <memory>
+#include <string>
 
+#include "elements/film_force.h"
+#include "elements/film_reynolds.h"
+#include "elements/film_table.h"
 #include "elements/registry.h"
 #include "model/element.h"
 
@@ -59,15 +66,13 @@ struct JournalBearingParams {
   double contact_stiffness = 0.0;  ///< k_c [N/m^n]
   double contact_exponent = 1.5;   ///< n [-]
   double journal_speed = 0.0;      ///< added to the relative spin [rad/s]
-};
-
-/// Film force of one station in the bearing plane (2-D, bearing components):
-/// force on the journal and its partial derivatives.
-struct FilmForce {
-  Eigen::Vector2d f = Eigen::Vector2d::Zero();
-  Eigen::Matrix2d df_de = Eigen::Matrix2d::Zero();   ///< d f / d e
-  Eigen::Matrix2d df_ded = Eigen::Matrix2d::Zero();  ///< d f / d edot
-  Eigen::Vector2d df_dom = Eigen::Vector2d::Zero();  ///< d f / d omega
+  /// film model: "short" (the paper's), "finite" (Butenschoen's closed form),
+  /// "reynolds" (Reynolds' equation on a grid)
+  std::string film = "short";
+  bool cavitation = true;  ///< reynolds: Swift-Stieber (true) or none (full Sommerfeld film)
+  int grid_phi = 72;       ///< reynolds: cells around the circumference
+  int grid_axial = 8;      ///< reynolds: cells on the half width
+  bool table = false;      ///< reynolds: solve at each evaluation (false) or tabulate (true)
 };
 
 class JournalBearing : public Element {
@@ -89,7 +94,8 @@ class JournalBearing : public Element {
   /// contact) or e >= c. Public for tests.
   FilmForce film(double t, const Eigen::Vector2d& e, const Eigen::Vector2d& ed, double om,
                  double weight, bool derivs) const;
-  /// Hydrodynamic part only by the chosen method (no checks, no contact).
+  /// Hydrodynamic part only by the chosen film model (and, for the short
+  /// film, method): no checks, no contact.
   FilmForce hydro(const Eigen::Vector2d& e, const Eigen::Vector2d& ed, double om, double weight,
                   bool derivs, bool closed_form) const;
   /// Peak film pressure at the mid-plane for the state (e, ed, om) [Pa]; with
@@ -118,8 +124,16 @@ class JournalBearing : public Element {
   void station_state(const MarkerMotion* m, double s, Eigen::Vector2d& e, Eigen::Vector2d& ed,
                      double& om) const;
   void fail_if_closed(double t, double e) const;
+  /// Short film: hydro() and peak_pressure() of the paper's film.
+  FilmForce short_hydro(const Eigen::Vector2d& e, const Eigen::Vector2d& ed, double om,
+                        double weight, bool derivs, bool closed_form) const;
+  double short_peak_pressure(const Eigen::Vector2d& e, const Eigen::Vector2d& ed, double om,
+                             double* angle) const;
 
   JournalBearingParams p_;
+  enum class Film { Short, Finite, Reynolds } film_ = Film::Short;
+  std::shared_ptr<const ReynoldsFilm> reynolds_;  ///< film = reynolds
+  std::shared_ptr<const FilmTable> table_;        ///< film = reynolds, solve = table
   std::vector<Station> stations_;
   std::vector<double> gl_x_, gl_w_;  ///< Gauss-Legendre nodes/weights on [-1, 1]
 };

@@ -79,6 +79,16 @@ class ParamBinding {
     return *this;
   }
 
+  /// A choice of words (in documentation order) bound to a string member whose
+  /// value in the struct is the default.
+  ParamBinding& choice(std::string P::*member, const std::string& key, const std::string& doc,
+                       const std::vector<std::string>& words) {
+    specs_.push_back(text_param(key, doc, words, P{}.*member));
+    readers_.push_back(
+        [member, key](P& p, const ParamValues& v, const std::string&) { p.*member = v.text(key); });
+    return *this;
+  }
+
   /// A parameter the element's factory reads itself.
   ParamBinding& unbound(ParamSpec spec) {
     specs_.push_back(std::move(spec));

@@ -1,0 +1,149 @@
+// evas bearing: the static answer of one journal bearing for any film model
+// (elements/bearing_static.h), as a table or JSON.
+#include <algorithm>
+#include <boost/program_options.hpp>
+#include <cmath>
+#include <iomanip>
+#include <iostream>
+#include <memory>
+#include <sstream>
+
+#include "apps/commands.h"
+#include "elements/bearing_static.h"
+#include "elements/registry.h"
+#include "model/types.h"
+
+namespace evas::cli {
+
+namespace {
+
+std::string num(double x) {
+  if (!std::isfinite(x)) throw RunError("evas bearing: a result is not finite");
+  std::ostringstream os;
+  os << std::setprecision(10) << x;
+  return os.str();
+}
+
+std::string matrix_json(const Eigen::Matrix2d& m) {
+  return "[[" + num(m(0, 0)) + ", " + num(m(0, 1)) + "], [" + num(m(1, 0)) + ", " + num(m(1, 1)) +
+         "]]";
+}
+
+void print_json(const BearingOperatingPoint& r, const std::string& film) {
+  std::cout << "{\n  \"film\": \"" << film << "\",\n  \"load\": " << num(r.load)
+            << ",\n  \"eccentricity\": " << num(r.eccentricity)
+            << ",\n  \"attitude_deg\": " << num(r.attitude_deg)
+            << ",\n  \"sommerfeld\": " << num(r.sommerfeld)
+            << ",\n  \"friction_variable\": " << num(r.friction_variable)
+            << ",\n  \"friction_torque\": " << num(r.friction_torque)
+            << ",\n  \"power_loss\": " << num(r.power_loss)
+            << ",\n  \"min_film\": " << num(r.min_film)
+            << ",\n  \"max_pressure\": " << num(r.max_pressure)
+            << ",\n  \"max_pressure_angle_deg\": " << num(r.max_pressure_angle_deg)
+            << ",\n  \"side_flow\": " << (r.side_flow ? num(*r.side_flow) : "null")
+            << ",\n  \"K\": " << matrix_json(r.K) << ",\n  \"C\": " << matrix_json(r.C) << "\n}\n";
+}
+
+void print_table(const BearingOperatingPoint& r, const std::string& film) {
+  auto row = [](const char* name, const std::string& v, const char* unit) {
+    std::cout << "  " << std::left << std::setw(26) << name << std::right << std::setw(16) << v
+              << "  " << unit << "\n";
+  };
+  std::cout << "journal bearing, film '" << film << "' (x along the load):\n";
+  row("load", num(r.load), "N");
+  row("eccentricity ratio", num(r.eccentricity), "-");
+  row("attitude angle", num(r.attitude_deg), "deg");
+  row("Sommerfeld number S", num(r.sommerfeld), "-");
+  row("friction variable (R/c) f", num(r.friction_variable), "-");
+  row("friction torque", num(r.friction_torque), "N m");
+  row("power loss", num(r.power_loss), "W");
+  row("minimum film", num(r.min_film), "m");
+  row("maximum pressure", num(r.max_pressure), film == "finite" ? "Pa (estimate)" : "Pa");
+  row("  at angle from the load", num(r.max_pressure_angle_deg), "deg");
+  row("side flow", r.side_flow ? num(*r.side_flow) : "n/a", "m^3/s");
+  const char* k[4] = {"Kxx", "Kxy", "Kyx", "Kyy"};
+  const char* c[4] = {"Cxx", "Cxy", "Cyx", "Cyy"};
+  for (int i = 0; i < 4; ++i) row(k[i], num(r.K(i / 2, i % 2)), "N/m");
+  for (int i = 0; i < 4; ++i) row(c[i], num(r.C(i / 2, i % 2)), "N s/m");
+}
+
+}  // namespace
+
+int cmd_bearing(const std::vector<std::string>& args) {
+  po::options_description opts(
+      "usage: evas bearing --radius R --width B --clearance C --viscosity ETA --speed RPM\n"
+      "                    (--load W | --eccentricity EPS) [--film short|finite|reynolds]\n"
+      "                    [--cavitation swift-stieber|none] [--grid-phi N] [--grid-axial N]\n"
+      "                    [--json]\n\n"
+      "The static answer of one journal bearing (the journal spinning at RPM under a steady\n"
+      "load W, or at the eccentricity ratio EPS): eccentricity, attitude angle, Sommerfeld\n"
+      "number S = (R/c)^2 eta N / P, friction variable (R/c) f, friction torque and power,\n"
+      "maximum pressure and its angle, side flow, and the linearized stiffness K = -df/de\n"
+      "and damping C = -df/d(de/dt) of the film force f on the journal, with x along the\n"
+      "load. The film is the journal-bearing element's (the same code as at run time;\n"
+      "parameters named as the element's). docs/elements-journal-bearing.md, \"Film models\".\n\n"
+      "options");
+  double radius = 0, width = 0, clearance = 0, viscosity = 0, speed = 0;
+  std::string film = "short", cavitation = "swift-stieber";
+  int grid_phi = JournalBearingParams{}.grid_phi, grid_axial = JournalBearingParams{}.grid_axial;
+  opts.add_options()("help,h", "show this help")("radius", po::value<double>(&radius),
+                                                 "journal radius R [m]")(
+      "width", po::value<double>(&width), "bearing width B [m]")(
+      "clearance", po::value<double>(&clearance), "radial clearance c [m]")(
+      "viscosity", po::value<double>(&viscosity), "dynamic viscosity eta [Pa s]")(
+      "speed", po::value<double>(&speed), "journal speed [rpm]")("load", po::value<double>(),
+                                                                 "steady load on the journal [N]")(
+      "eccentricity", po::value<double>(), "eccentricity ratio e/c instead of the load")(
+      "film", po::value<std::string>(&film)->default_value(film), "short | finite | reynolds")(
+      "cavitation", po::value<std::string>(&cavitation)->default_value(cavitation),
+      "film reynolds: swift-stieber | none")("grid-phi",
+                                             po::value<int>(&grid_phi)->default_value(grid_phi),
+                                             "film reynolds: cells around the circumference")(
+      "grid-axial", po::value<int>(&grid_axial)->default_value(grid_axial),
+      "film reynolds: cells on the half width")("json", "print JSON instead of the table");
+  po::variables_map vm;
+  if (parse_args(args, opts, {}, vm)) return 0;
+  for (const char* o : {"radius", "width", "clearance", "viscosity", "speed"})
+    if (!vm.count(o)) throw InputError(std::string("missing --") + o);
+  if (vm.count("load") == vm.count("eccentricity"))
+    throw InputError("give exactly one of --load and --eccentricity");
+  if (!(speed > 0.0)) throw InputError("--speed " + num(speed) + ": must be above 0 rpm");
+  const ElementType& t = element_type("journal-bearing");
+  ParamValues v;
+  v.numbers["radius"] = {radius};
+  v.numbers["width"] = {width};
+  v.numbers["clearance"] = {clearance};
+  v.numbers["viscosity"] = {viscosity};
+  v.numbers["grid_phi"] = {static_cast<double>(grid_phi)};
+  v.numbers["grid_axial"] = {static_cast<double>(grid_axial)};
+  v.texts["film"] = film;
+  v.texts["cavitation"] = cavitation;
+  const std::string where = "the bearing's options";
+  for (const ParamSpec& s : t.params) {
+    auto n = v.numbers.find(s.key);
+    if (n != v.numbers.end()) check_param(s, n->second, where);
+    auto x = v.texts.find(s.key);
+    if (x != v.texts.end() && !s.choices.empty() &&
+        std::find(s.choices.begin(), s.choices.end(), x->second) == s.choices.end()) {
+      std::string list;
+      for (const std::string& c : s.choices) list += (list.empty() ? "" : ", ") + c;
+      throw InputError("--" + s.key + " '" + x->second + "' is not one of " + list);
+    }
+  }
+  if (!(viscosity > 0.0)) throw InputError("--viscosity must be above 0 Pa s");
+  if (!(clearance < radius)) throw InputError("--clearance must be smaller than --radius");
+  complete_params(t, v, where);
+  const std::unique_ptr<Element> el = t.make("bearing", {0, 1}, v);
+  const auto& b = dynamic_cast<const JournalBearing&>(*el);
+  const double om = speed * 2.0 * M_PI / 60.0;
+  const BearingOperatingPoint r =
+      vm.count("load") ? bearing_at_load(b, om, vm["load"].as<double>())
+                       : bearing_at_eccentricity(b, om, vm["eccentricity"].as<double>());
+  if (vm.count("json"))
+    print_json(r, film);
+  else
+    print_table(r, film);
+  return 0;
+}
+
+}  // namespace evas::cli

@@ -1,0 +1,65 @@
+// The Reynolds film of a journal bearing of finite width: Reynolds' equation on
+// a grid over the whole film (circumference x width), with the Swift-Stieber
+// (Reynolds) cavitation condition, p >= 0 and no flow across the film's
+// rupture boundary, as Raimondi & Boyd solved it (A. A. Raimondi, J. Boyd, "A
+// solution for the finite journal bearing and its application to analysis and
+// design", ASLE Transactions 1 (1958) 159-209), or without cavitation
+// (Sommerfeld's full film, negative pressures kept). Derivation, grid and
+// solver: docs/elements-journal-bearing.md, "Film models".
+//
+// Bearing-frame components as in elements/journal_bearing.h: e the journal
+// centre's offset, W = ed - (om/2) J e, gap h(phi) = c - e . u(phi). Reynolds'
+// equation
+//   (1/R^2) d/dphi (h^3 dp/dphi) + d/dx (h^3 dp/dx) = -12 eta W . u(phi),
+// p = 0 at both ends x = 0, B. With p = (12 eta R^2 / c^3) q and H = h / c,
+// xi = x / B:
+//   d/dphi (H^3 dq/dphi) + (R/B)^2 d/dxi (H^3 dq/dxi) = -W . u(phi)
+// on cell-centred finite volumes, n_phi cells around, n_axial cells on the
+// half width (an aligned journal's film is symmetric about the mid-plane).
+// Swift-Stieber: the discrete complementarity problem q >= 0, A q - g >= 0,
+// q (A q - g) = 0, solved by the primal-dual active-set method (Hintermueller,
+// Ito & Kunisch, SIAM J. Optim. 13 (2003) 865-888), exact in a finite number of
+// sets for this M-matrix; each set one sparse Cholesky factorization.
+#pragma once
+
+#include <Eigen/Dense>
+#include <vector>
+
+namespace evas {
+
+struct ReynoldsGrid {
+  int n_phi = 72;          ///< cells around the circumference
+  int n_axial = 8;         ///< cells on the half width (mid-plane symmetry)
+  bool cavitation = true;  ///< Swift-Stieber (true) or the full Sommerfeld film
+};
+
+/// One solve of the film: force on the journal and what `evas bearing` reports.
+struct ReynoldsSolution {
+  Eigen::Vector2d f = Eigen::Vector2d::Zero();      ///< force on the journal [N]
+  Eigen::Matrix2d df_dW = Eigen::Matrix2d::Zero();  ///< d f / d W [N s/m]
+  Eigen::Matrix2d df_de = Eigen::Matrix2d::Zero();  ///< d f / d e at fixed W [N/m]
+  double p_max = 0.0;                               ///< largest cell pressure [Pa]
+  double p_max_angle = 0.0;                         ///< its bearing angle phi [rad]
+  double side_flow = 0.0;                           ///< flow out of both ends [m^3/s]
+  int active_sets = 0;                              ///< active-set iterations taken
+  int pressurized = 0;                              ///< cells with p > 0
+};
+
+/// Reynolds film of radius R, width B, radial clearance c, viscosity eta.
+class ReynoldsFilm {
+ public:
+  ReynoldsFilm(double radius, double width, double clearance, double viscosity,
+               const ReynoldsGrid& grid);
+  /// The film for eccentricity e and W (bearing components); derivatives when
+  /// `derivs`. The caller checks |e| < c.
+  ReynoldsSolution solve(const Eigen::Vector2d& e, const Eigen::Vector2d& W, bool derivs) const;
+  const ReynoldsGrid& grid() const { return grid_; }
+
+ private:
+  double R_, B_, c_, eta_;
+  ReynoldsGrid grid_;
+  std::vector<double> cos_c_, sin_c_;  ///< cell-centre angles
+  std::vector<double> cos_f_, sin_f_;  ///< face angles (face i between cells i-1 and i)
+};
+
+}  // namespace evas
