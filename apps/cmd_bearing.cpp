@@ -29,8 +29,9 @@ std::string matrix_json(const Eigen::Matrix2d& m) {
          "]]";
 }
 
-void print_json(const BearingOperatingPoint& r, const std::string& film) {
-  std::cout << "{\n  \"film\": \"" << film << "\",\n  \"load\": " << num(r.load)
+void print_json(const BearingOperatingPoint& r, const std::string& film, const std::string& feed) {
+  std::cout << "{\n  \"film\": \"" << film << "\",\n  \"feed\": \"" << feed
+            << "\",\n  \"load\": " << num(r.load)
             << ",\n  \"eccentricity\": " << num(r.eccentricity)
             << ",\n  \"attitude_deg\": " << num(r.attitude_deg)
             << ",\n  \"sommerfeld\": " << num(r.sommerfeld)
@@ -74,17 +75,25 @@ int cmd_bearing(const std::vector<std::string>& args) {
       "usage: evas bearing --radius R --width B --clearance C --viscosity ETA --speed RPM\n"
       "                    (--load W | --eccentricity EPS) [--film short|finite|reynolds]\n"
       "                    [--cavitation swift-stieber|none] [--grid-phi N] [--grid-axial N]\n"
-      "                    [--json]\n\n"
+      "                    [--feed none|axial-grooves|circumferential-groove] [--feed-angle DEG]\n"
+      "                    [--feed-count N] [--feed-arc DEG] [--feed-width M]\n"
+      "                    [--supply-pressure PA] [--json]\n\n"
       "The static answer of one journal bearing (the journal spinning at RPM under a steady\n"
       "load W, or at the eccentricity ratio EPS): eccentricity, attitude angle, Sommerfeld\n"
       "number S = (R/c)^2 eta N / P, friction variable (R/c) f, friction torque and power,\n"
       "maximum pressure and its angle, side flow, and the linearized stiffness K = -df/de\n"
       "and damping C = -df/d(de/dt) of the film force f on the journal, with x along the\n"
       "load. The film is the journal-bearing element's (the same code as at run time;\n"
-      "parameters named as the element's). docs/elements-journal-bearing.md, \"Film models\".\n\n"
+      "parameters named as the element's). Grooves (film reynolds) sit at angles from the\n"
+      "load, in the direction of rotation. docs/elements-journal-bearing.md, \"Film models\".\n\n"
       "options");
   double radius = 0, width = 0, clearance = 0, viscosity = 0, speed = 0;
   std::string film = "short", cavitation = "swift-stieber";
+  const JournalBearingParams defaults;
+  std::string feed = defaults.feed;
+  double feed_angle = defaults.feed_angle, feed_arc = defaults.feed_arc,
+         feed_width = defaults.feed_width, supply_pressure = defaults.supply_pressure;
+  int feed_count = defaults.feed_count;
   int grid_phi = JournalBearingParams{}.grid_phi, grid_axial = JournalBearingParams{}.grid_axial;
   opts.add_options()("help,h", "show this help")("radius", po::value<double>(&radius),
                                                  "journal radius R [m]")(
@@ -100,7 +109,19 @@ int cmd_bearing(const std::vector<std::string>& args) {
                                              po::value<int>(&grid_phi)->default_value(grid_phi),
                                              "film reynolds: cells around the circumference")(
       "grid-axial", po::value<int>(&grid_axial)->default_value(grid_axial),
-      "film reynolds: cells on the half width")("json", "print JSON instead of the table");
+      "film reynolds: cells on the half width")(
+      "feed", po::value<std::string>(&feed)->default_value(feed),
+      "film reynolds: none | axial-grooves | circumferential-groove")(
+      "feed-angle", po::value<double>(&feed_angle)->default_value(feed_angle),
+      "axial grooves: the first one's centre from the load [deg]")(
+      "feed-count", po::value<int>(&feed_count)->default_value(feed_count),
+      "axial grooves: how many, evenly spaced")(
+      "feed-arc", po::value<double>(&feed_arc)->default_value(feed_arc),
+      "axial grooves: arc of each [deg]")("feed-width",
+                                          po::value<double>(&feed_width)->default_value(feed_width),
+                                          "circumferential groove: its width [m]")(
+      "supply-pressure", po::value<double>(&supply_pressure)->default_value(supply_pressure),
+      "oil pressure in the grooves [Pa]")("json", "print JSON instead of the table");
   po::variables_map vm;
   if (parse_args(args, opts, {}, vm)) return 0;
   for (const char* o : {"radius", "width", "clearance", "viscosity", "speed"})
@@ -118,6 +139,12 @@ int cmd_bearing(const std::vector<std::string>& args) {
   v.numbers["grid_axial"] = {static_cast<double>(grid_axial)};
   v.texts["film"] = film;
   v.texts["cavitation"] = cavitation;
+  v.numbers["feed_angle"] = {feed_angle};
+  v.numbers["feed_count"] = {static_cast<double>(feed_count)};
+  v.numbers["feed_arc"] = {feed_arc};
+  v.numbers["feed_width"] = {feed_width};
+  v.numbers["supply_pressure"] = {supply_pressure};
+  v.texts["feed"] = feed;
   const std::string where = "the bearing's options";
   for (const ParamSpec& s : t.params) {
     auto n = v.numbers.find(s.key);
@@ -140,9 +167,9 @@ int cmd_bearing(const std::vector<std::string>& args) {
       vm.count("load") ? bearing_at_load(b, om, vm["load"].as<double>())
                        : bearing_at_eccentricity(b, om, vm["eccentricity"].as<double>());
   if (vm.count("json"))
-    print_json(r, film);
+    print_json(r, film, feed);
   else
-    print_table(r, film);
+    print_table(r, feed == "none" ? film : film + "', feed '" + feed);
   return 0;
 }
 

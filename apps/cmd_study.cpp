@@ -584,7 +584,8 @@ int sweep(const std::vector<std::string>& args) {
 
 int budget(const std::vector<std::string>& args) {
   po::options_description opts(
-      "usage: evas study budget SCENE.yaml [--richer ITEM.KEY=VALUE]... [options]\n\n"
+      "usage: evas study budget SCENE.yaml [--richer ITEM.KEY=VALUE]...\n"
+      "                         [--finer ITEM.KEY=VALUE]... [options]\n\n"
       "The error budget of the scene's answer as the scene sets it up (its integrator,\n"
       "basis, elements, start): beside that base run, one variation per source of error,\n"
       "each removing it, and per channel the difference over the base's last cycle:\n"
@@ -593,7 +594,8 @@ int budget(const std::vector<std::string>& args) {
       "               against the cycle before when the search does not converge;\n"
       "  basis        the scene on a richer basis: the --richer edits, else every mode\n"
       "               of the body files that the scene's modes: options leave out;\n"
-      "  element      a finer element model (none in evas yet: said so).\n"
+      "  element      finer element models: the --finer edits, else every journal\n"
+      "               bearing on film reynolds (short and finite films are coarser).\n"
       "With each, the variation's wall time and steps against the base's: what removing\n"
       "that source costs; the largest error names the dominant source. Writes\n"
       "DIR/budget.csv (per channel), budget_sources.csv and budget.md; `evas report`\n"
@@ -603,9 +605,12 @@ int budget(const std::vector<std::string>& args) {
       "signal N (130: Ctrl-C).\n\noptions");
   opts.add_options()("richer", po::value<std::vector<std::string>>()->composing(),
                      "ITEM.KEY=VALUE: the richer basis, as --param (e.g. crank.file=rich.h5), "
-                     "repeatable")("tighten", po::value<double>()->default_value(100.0, "100"),
-                                   "the tighter integration: rtol and atol (or a fixed step) "
-                                   "divided by this")(
+                     "repeatable")("finer", po::value<std::vector<std::string>>()->composing(),
+                                   "ITEM.KEY=VALUE: the finer element models, as --param (e.g. "
+                                   "main1.grid_phi=144), repeatable")(
+      "tighten", po::value<double>()->default_value(100.0, "100"),
+      "the tighter integration: rtol and atol (or a fixed step) "
+      "divided by this")(
       "orders", po::value<double>(),
       "compare the engine orders up to N only (the last cycle's Fourier series; a "
       "crank-angle grid)");
@@ -618,6 +623,7 @@ int budget(const std::vector<std::string>& args) {
   if (o.start.steady) throw InputError("--steady does not apply: the budget measures the start-up");
   study::BudgetOptions bo;
   if (vm.count("richer")) bo.richer = vm["richer"].as<std::vector<std::string>>();
+  if (vm.count("finer")) bo.finer = vm["finer"].as<std::vector<std::string>>();
   bo.tighten = vm["tighten"].as<double>();
   if (vm.count("orders")) bo.orders = vm["orders"].as<double>();
   if (o.out_dir.empty()) {

@@ -56,13 +56,6 @@ T squeeze(const Coefficients& k, double bd, const T& es) {
 
 }  // namespace
 
-void finite_film_rotation(double bd, double eps, double& so_d, double& beta) {
-  const Coefficients k = coefficients(bd);
-  double per = 0.0;
-  rotation(k, bd, eps, per, beta);
-  so_d = per * eps;
-}
-
 FilmForce finite_film(double R, double B, double c, double eta, const Eigen::Vector2d& e,
                       const Eigen::Vector2d& ed, double om, bool derivs) {
   const double bd = B / (2.0 * R), psi = c / R;

@@ -37,9 +37,4 @@ constexpr double kFiniteFilmMaxWidthRatio = 1.0;
 FilmForce finite_film(double R, double B, double c, double eta, const Eigen::Vector2d& e,
                       const Eigen::Vector2d& ed, double om, bool derivs);
 
-/// The rotation part's angle beta between the line of centres and the force,
-/// and Sommerfeld number So_D, for width ratio b/d and eccentricity ratio eps
-/// (static load: ed = 0).
-void finite_film_rotation(double bd, double eps, double& so_d, double& beta);
-
 }  // namespace evas

@@ -25,8 +25,11 @@ using V2 = Eigen::Vector2d;
 // pressurized all round) a sparse LDL^T of the pressurized cells.
 class FilmSystem {
  public:
-  FilmSystem(int np, int nz, const std::vector<double>& aphi, const std::vector<double>& az)
-      : np_(np), nz_(nz), aphi_(aphi), az_(az) {}
+  // inner: the cells next to the mid-plane see a fixed pressure across their
+  // inner face (a circumferential groove) instead of the symmetry plane
+  FilmSystem(int np, int nz, const std::vector<double>& aphi, const std::vector<double>& az,
+             bool inner)
+      : np_(np), nz_(nz), aphi_(aphi), az_(az), inner_(inner) {}
 
   void factor(const std::vector<char>& on) {
     on_ = &on;
@@ -97,7 +100,7 @@ class FilmSystem {
       }
       const int in = (i + 1) % np_;
       row[0] = aphi_[in] + aphi_[i] + (j + 1 < nz_ ? az_[i] : 0.0) + (j > 0 ? az_[i] : 0.0) +
-               (j == 0 ? 2.0 * az_[i] : 0.0);
+               (j == 0 ? 2.0 * az_[i] : 0.0) + (inner_ && j + 1 == nz_ ? 2.0 * az_[i] : 0.0);
       if (j > 0 && on[k - 1]) row[1] = -az_[i];             // (i, j - 1)
       if (t >= b && on[cells_[t - b]]) row[b] = -aphi_[i];  // the ring before, same j
     }
@@ -143,6 +146,7 @@ class FilmSystem {
         if (j + 1 < nz_) diag += az_[i], off(i * nz_ + j + 1, az_[i]);
         if (j > 0) diag += az_[i], off(i * nz_ + j - 1, az_[i]);
         if (j == 0) diag += 2.0 * az_[i];
+        if (inner_ && j + 1 == nz_) diag += 2.0 * az_[i];
         trip.emplace_back(r, r, diag);
       }
     }
@@ -155,6 +159,7 @@ class FilmSystem {
   int np_, nz_;
   const std::vector<double>& aphi_;
   const std::vector<double>& az_;
+  bool inner_;
   const std::vector<char>* on_ = nullptr;
   int start_ = -1;
   std::vector<int> cells_;   // band position t (rings after start_, in order) -> cell
@@ -187,11 +192,42 @@ ReynoldsFilm::ReynoldsFilm(double radius, double width, double clearance, double
     cos_f_[i] = std::cos(i * dphi);
     sin_f_[i] = std::sin(i * dphi);
   }
+  const ReynoldsFeed& feed = grid_.feed;
+  auto deg = [](double a) { return format_number(a * 180.0 / M_PI); };
+  if (!(feed.supply_pressure >= 0.0))
+    throw InputError("Reynolds film: the supply pressure " + format_number(feed.supply_pressure) +
+                     " Pa is below 0");
+  if (!(feed.groove_width >= 0.0) || feed.groove_width >= B_)
+    throw InputError("Reynolds film: a circumferential groove " + format_number(feed.groove_width) +
+                     " m wide leaves no land of the " + format_number(B_) + " m bearing width");
+  inner_feed_ = feed.groove_width > 0.0;
+  dxi_ = 0.5 * (1.0 - feed.groove_width / B_) / grid_.n_axial;
+  q_supply_ = feed.supply_pressure * c_ * c_ * c_ / (12.0 * eta_ * R_ * R_);
+  fed_.assign(n, 0);
+  for (double a : feed.groove_angles) {
+    if (!(feed.groove_arc > 0.0 && feed.groove_arc < 2.0 * M_PI))
+      throw InputError("Reynolds film: an axial groove's arc of " + deg(feed.groove_arc) +
+                       " deg must lie between 0 and 360 deg");
+    int cells = 0;
+    for (int i = 0; i < n; ++i) {
+      const double d = std::remainder((i + 0.5) * dphi - a, 2.0 * M_PI);
+      if (std::abs(d) < 0.5 * feed.groove_arc) fed_[i] = 1, ++cells;
+    }
+    if (cells == 0)
+      throw InputError("Reynolds film: the axial groove at " + deg(a) + " deg, " +
+                       deg(feed.groove_arc) + " deg wide, is narrower than a cell of the grid (" +
+                       deg(dphi) + " deg): raise grid_phi");
+  }
+  if (std::count(fed_.begin(), fed_.end(), 1) == n)
+    throw InputError("Reynolds film: the axial grooves cover the whole circumference");
+  face_scale_.assign(n, 1.0);
+  for (int i = 0; i < n; ++i)
+    if (fed_[i] != fed_[(i + n - 1) % n]) face_scale_[i] = 2.0;  // half a cell to the edge
 }
 
 ReynoldsSolution ReynoldsFilm::solve(const V2& e, const V2& W, bool derivs) const {
   const int np = grid_.n_phi, nz = grid_.n_axial, n = np * nz;
-  const double dphi = 2.0 * M_PI / np, dxi = 0.5 / nz;
+  const double dphi = 2.0 * M_PI / np, dxi = dxi_;
   const double rb2 = (R_ / B_) * (R_ / B_);
   // Coefficients: around, face i (angle i dphi) between cells i-1 and i; across,
   // between neighbouring axial cells of ring i; at the end x = 0 (half a cell away).
@@ -199,7 +235,7 @@ ReynoldsSolution ReynoldsFilm::solve(const V2& e, const V2& W, bool derivs) cons
   for (int i = 0; i < np; ++i) {
     Hc[i] = 1.0 - (e.x() * cos_c_[i] + e.y() * sin_c_[i]) / c_;
     Hf[i] = 1.0 - (e.x() * cos_f_[i] + e.y() * sin_f_[i]) / c_;
-    aphi[i] = Hf[i] * Hf[i] * Hf[i] / (dphi * dphi);
+    aphi[i] = face_scale_[i] * Hf[i] * Hf[i] * Hf[i] / (dphi * dphi);
     az[i] = rb2 * Hc[i] * Hc[i] * Hc[i] / (dxi * dxi);
   }
   auto idx = [nz](int i, int j) { return i * nz + j; };
@@ -220,43 +256,55 @@ ReynoldsSolution ReynoldsFilm::solve(const V2& e, const V2& W, bool derivs) cons
         }
       }
       r[idx(i, 0)] += 2.0 * ac[i] * q[idx(i, 0)];  // the end, p = 0
+      if (inner_feed_)                             // the land's inner end, at the groove's pressure
+        r[idx(i, nz - 1)] += 2.0 * ac[i] * (q[idx(i, nz - 1)] - q_supply_);
     }
     return r;
   };
   Eigen::VectorXd g(n);
   for (int i = 0; i < np; ++i)
     for (int j = 0; j < nz; ++j) g[idx(i, j)] = W.x() * cos_c_[i] + W.y() * sin_c_[i];
+  // The grooves' pressure: q_fix on the axial grooves' cells (0 elsewhere); the
+  // system on the other cells has the right side g - A q_fix (the circumferential
+  // groove's part inside apply)
+  Eigen::VectorXd q_fix = Eigen::VectorXd::Zero(n);
+  for (int i = 0; i < np; ++i)
+    if (fed_[i])
+      for (int j = 0; j < nz; ++j) q_fix[idx(i, j)] = q_supply_;
+  const bool fed = inner_feed_ || std::count(fed_.begin(), fed_.end(), 1) > 0;
+  const Eigen::VectorXd rhs = fed ? Eigen::VectorXd(g - apply(aphi, az, q_fix)) : g;
 
   // Active set: pressurized cells get the equation, the others q = 0. The
   // first set is the pi-film's (g > 0). (A start from the last call's final
   // set took more sets on the engine, 3.9 against 3.3 per solve: consecutive
   // calls come from the other axial station and from the corrector's trials.)
   std::vector<char> on(n);
-  for (int k = 0; k < n; ++k) on[k] = !grid_.cavitation || g[k] > 0.0;
+  for (int k = 0; k < n; ++k) on[k] = !fed_[k / nz] && (!grid_.cavitation || rhs[k] > 0.0);
   // W = 0 (a journal at rest in its film): no pressure, and f, of degree one in
   // W, has a kink there; the set and the derivatives are the one-sided ones for
   // W along e (along x at the centre), as the table's (film_table.h)
-  const bool at_rest = grid_.cavitation && W.squaredNorm() == 0.0;
+  const bool at_rest = grid_.cavitation && W.squaredNorm() == 0.0 && q_supply_ == 0.0;
   if (at_rest) {
     const double en = e.norm();
     const V2 dir = en > 0.0 ? V2(e / en) : V2(1.0, 0.0);
     for (int i = 0; i < np; ++i)
       for (int j = 0; j < nz; ++j) g[idx(i, j)] = dir.x() * cos_c_[i] + dir.y() * sin_c_[i];
-    for (int k = 0; k < n; ++k) on[k] = g[k] > 0.0;
+    for (int k = 0; k < n; ++k) on[k] = !fed_[k / nz] && g[k] > 0.0;
   }
   Eigen::VectorXd q = Eigen::VectorXd::Zero(n);
-  FilmSystem sys(np, nz, aphi, az);
+  FilmSystem sys(np, nz, aphi, az, inner_feed_);
   ReynoldsSolution s;
   for (int it = 0;; ++it) {
     if (it > 100)
       throw RunError("Reynolds film: the cavitation boundary did not settle in 100 active sets");
     ++s.active_sets;
     sys.factor(on);
-    q = sys.solve(g);
+    q = sys.solve(at_rest ? g : rhs) + q_fix;
     if (!grid_.cavitation) break;
     const Eigen::VectorXd lambda = apply(aphi, az, q) - g;
     bool changed = false;
     for (int k = 0; k < n; ++k) {
+      if (fed_[k / nz]) continue;
       const char now = on[k] ? (q[k] >= 0.0) : !(lambda[k] > 0.0);
       changed |= now != on[k];
       on[k] = now;
@@ -266,7 +314,7 @@ ReynoldsSolution ReynoldsFilm::solve(const V2& e, const V2& W, bool derivs) cons
   if (at_rest) q.setZero();  // the set was found for W along e; the film itself is empty
   // Cells cut from the set with q < 0 in the last solve are zero.
   const double kp = 12.0 * eta_ * R_ * R_ / (c_ * c_ * c_);
-  const double kf = -2.0 * R_ * B_ * dphi * dxi * kp;  // force per unit q u
+  const double kf = -2.0 * R_ * B_ * dphi * dxi * kp;  // force per unit q u (both lands)
   for (int i = 0; i < np; ++i)
     for (int j = 0; j < nz; ++j) {
       // (without cavitation the film's negative pressures count too)
@@ -299,7 +347,7 @@ ReynoldsSolution ReynoldsFilm::solve(const V2& e, const V2& W, bool derivs) cons
     std::vector<double> dap(np), daz(np);
     for (int i = 0; i < np; ++i) {
       const double uf = c == 0 ? cos_f_[i] : sin_f_[i], uc = c == 0 ? cos_c_[i] : sin_c_[i];
-      dap[i] = -3.0 * Hf[i] * Hf[i] * uf / (c_ * dphi * dphi);
+      dap[i] = -3.0 * face_scale_[i] * Hf[i] * Hf[i] * uf / (c_ * dphi * dphi);
       daz[i] = -3.0 * rb2 * Hc[i] * Hc[i] * uc / (c_ * dxi * dxi);
     }
     s.df_de.col(c) = force_of(sys.solve(-apply(dap, daz, q)));

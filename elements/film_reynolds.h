@@ -15,7 +15,9 @@
 // xi = x / B:
 //   d/dphi (H^3 dq/dphi) + (R/B)^2 d/dxi (H^3 dq/dxi) = -W . u(phi)
 // on cell-centred finite volumes, n_phi cells around, n_axial cells on the
-// half width (an aligned journal's film is symmetric about the mid-plane).
+// half width (an aligned journal's film is symmetric about the mid-plane). Feed
+// (ReynoldsFeed): q fixed at the supply pressure in the axial grooves and at the
+// inner end of each land of a circumferentially grooved bearing.
 // Swift-Stieber: the discrete complementarity problem q >= 0, A q - g >= 0,
 // q (A q - g) = 0, solved by the primal-dual active-set method (Hintermueller,
 // Ito & Kunisch, SIAM J. Optim. 13 (2003) 865-888), exact in a finite number of
@@ -27,10 +29,24 @@
 
 namespace evas {
 
+/// How oil reaches the film: axial grooves (through the whole width, at fixed
+/// angles of the bearing) and a circumferential groove at the mid-plane (two
+/// lands), both at the supply pressure. A groove's pressure holds at its edges:
+/// an axial groove is the whole cells whose centres lie within its arc (its
+/// edges on the cells' faces), the circumferential groove the inner end of
+/// each land.
+struct ReynoldsFeed {
+  std::vector<double> groove_angles;  ///< axial grooves' centres, bearing angle [rad]
+  double groove_arc = 0.0;            ///< arc of each axial groove [rad]
+  double groove_width = 0.0;          ///< circumferential groove's width [m] (0: none)
+  double supply_pressure = 0.0;       ///< pressure in the grooves [Pa], >= 0
+};
+
 struct ReynoldsGrid {
   int n_phi = 72;          ///< cells around the circumference
-  int n_axial = 8;         ///< cells on the half width (mid-plane symmetry)
+  int n_axial = 8;         ///< cells on the half width (on one land with a groove)
   bool cavitation = true;  ///< Swift-Stieber (true) or the full Sommerfeld film
+  ReynoldsFeed feed;       ///< grooves and supply pressure (none by default)
 };
 
 /// One solve of the film: force on the journal and what `evas bearing` reports.
@@ -60,6 +76,11 @@ class ReynoldsFilm {
   ReynoldsGrid grid_;
   std::vector<double> cos_c_, sin_c_;  ///< cell-centre angles
   std::vector<double> cos_f_, sin_f_;  ///< face angles (face i between cells i-1 and i)
+  std::vector<char> fed_;              ///< ring i lies in an axial groove
+  std::vector<double> face_scale_;     ///< 2 on a face between a groove and the land, else 1
+  double dxi_ = 0.0;                   ///< axial cell size / B
+  double q_supply_ = 0.0;              ///< supply pressure in q's units
+  bool inner_feed_ = false;            ///< a circumferential groove at the lands' inner ends
 };
 
 }  // namespace evas

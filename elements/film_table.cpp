@@ -1,6 +1,7 @@
 // The tabulated Reynolds film: see film_table.h.
 #include "elements/film_table.h"
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <tuple>
@@ -41,13 +42,18 @@ FilmTable::FilmTable(std::shared_ptr<const ReynoldsFilm> film, double clearance,
   du_ = -std::log(1.0 - size_.eps_top) / size_.n_eps;
   dpsi_ = 2.0 * M_PI / size_.n_psi;
   for (auto& h : h_) h.resize(static_cast<std::size_t>(size_.n_eps + 1) * size_.n_psi);
+  for (auto& h : peak_) h.resize(h_[0].size());
   for (int i = 0; i <= size_.n_eps; ++i) {
     const double one_m = std::exp(-i * du_), eps = 1.0 - one_m;
     for (int j = 0; j < size_.n_psi; ++j) {
       const V2 W(std::cos(j * dpsi_), std::sin(j * dpsi_));
-      const V2 f = film_->solve(V2(eps * c_, 0.0), W, false).f;
-      for (int c = 0; c < 2; ++c)
-        h_[c][static_cast<std::size_t>(i) * size_.n_psi + j] = f[c] * one_m * one_m;
+      const ReynoldsSolution sol = film_->solve(V2(eps * c_, 0.0), W, false);
+      const std::size_t k = static_cast<std::size_t>(i) * size_.n_psi + j;
+      for (int c = 0; c < 2; ++c) h_[c][k] = sol.f[c] * one_m * one_m;
+      // a unit W always pressurizes some of the film (where W . u > 0)
+      peak_[0][k] = std::log(std::max(sol.p_max, 1e-300));
+      peak_[1][k] = std::cos(sol.p_max_angle);
+      peak_[2][k] = std::sin(sol.p_max_angle);
     }
   }
 }
@@ -59,6 +65,53 @@ double FilmTable::at(int c, int i, int j) const {
   if (i < 0) return 2.0 * node(0) - node(1);  // linear ghost nodes at both ends
   if (i > size_.n_eps) return 2.0 * node(size_.n_eps) - node(size_.n_eps - 1);
   return node(i);
+}
+
+FilmTable::Cell FilmTable::cell(double eps, double psi) const {
+  Cell k;
+  const double s = -std::log(1.0 - eps) / du_;
+  k.i = std::min(static_cast<int>(std::floor(s)), size_.n_eps - 1);
+  const double p = psi / dpsi_;
+  k.j = static_cast<int>(std::floor(p));
+  catmull_rom(s - k.i, k.wu, k.dwu);
+  catmull_rom(p - k.j, k.wp, k.dwp);
+  return k;
+}
+
+double FilmTable::interpolate(const std::vector<double>& v, const Cell& k) const {
+  const int n = size_.n_psi;
+  auto node = [&](int ii, int jj) {
+    jj = ((jj % n) + n) % n;
+    auto at_i = [&](int i3) { return v[static_cast<std::size_t>(i3) * n + jj]; };
+    if (ii < 0) return 2.0 * at_i(0) - at_i(1);
+    if (ii > size_.n_eps) return 2.0 * at_i(size_.n_eps) - at_i(size_.n_eps - 1);
+    return at_i(ii);
+  };
+  double x = 0.0;
+  for (int a = 0; a < 4; ++a)
+    for (int b = 0; b < 4; ++b) x += k.wu[a] * k.wp[b] * node(k.i - 1 + a, k.j - 1 + b);
+  return x;
+}
+
+double FilmTable::peak_pressure(const V2& e_in, const V2& W, double* angle) const {
+  const V2 e = e_in.norm() < 1e-12 * c_ ? V2(1e-12 * c_, 0.0) : e_in;
+  const double en = e.norm(), eps = en / c_;
+  if (angle) *angle = 0.0;
+  if (eps > size_.eps_top) {  // beyond the table: the film itself
+    const ReynoldsSolution s = film_->solve(e_in, W, false);
+    if (angle) *angle = s.p_max_angle;
+    return s.p_max;
+  }
+  const double wn = W.norm();
+  if (wn == 0.0) return 0.0;  // a journal at rest in its film
+  const double theta = std::atan2(e.y(), e.x());
+  double psi = std::atan2(W.y(), W.x()) - theta;
+  psi -= 2.0 * M_PI * std::floor(psi / (2.0 * M_PI));
+  const Cell k = cell(eps, psi);
+  if (angle)
+    *angle = std::remainder(theta + std::atan2(interpolate(peak_[2], k), interpolate(peak_[1], k)),
+                            2.0 * M_PI);
+  return wn * std::exp(interpolate(peak_[0], k));
 }
 
 FilmForce FilmTable::force(const V2& e_in, const V2& W, bool derivs) const {

@@ -37,6 +37,10 @@ class FilmTable {
   /// f(e, W) and, with `derivs`, df/de (at fixed W) and df/dW: in `r`, f,
   /// df_de and df_ded (= df/dW); df_dom is left to the caller.
   FilmForce force(const Eigen::Vector2d& e, const Eigen::Vector2d& W, bool derivs) const;
+  /// The peak pressure [Pa] and, in *angle, its bearing angle [rad] in (-pi, pi]:
+  /// |W| P(eps, psi) with ln P and the angle from the line of centres (its
+  /// cosine and sine) tabulated beside F and interpolated alike.
+  double peak_pressure(const Eigen::Vector2d& e, const Eigen::Vector2d& W, double* angle) const;
   /// A table shared by every bearing of the same film and size (built once per process).
   static std::shared_ptr<const FilmTable> shared(std::shared_ptr<const ReynoldsFilm> film,
                                                  double radius, double width, double clearance,
@@ -51,6 +55,18 @@ class FilmTable {
   FilmTableSize size_;
   double du_, dpsi_;
   std::vector<double> h_[2];  ///< (n_eps + 1) x n_psi, i n_psi + j
+  /// ln of the peak pressure per unit |W| and its angle's cosine and sine from
+  /// the line of centres, at the same nodes
+  std::vector<double> peak_[3];
+  /// Interpolation cell of (eps, psi): the first node of each direction, and
+  /// the four Catmull-Rom weights of each (and their derivatives)
+  struct Cell {
+    int i, j;
+    double wu[4], dwu[4], wp[4], dwp[4];
+  };
+  Cell cell(double eps, double psi) const;
+  /// Bicubic value of a table v over the nodes (linear ghost nodes in eps, periodic in psi)
+  double interpolate(const std::vector<double>& v, const Cell& k) const;
 };
 
 }  // namespace evas

@@ -146,23 +146,47 @@ JournalBearing::JournalBearing(std::string name, std::vector<int> markers,
                        "; this bearing's is " + fmt(bd) + " (use film 'reynolds')");
   } else if (p_.film == "reynolds") {
     film_ = Film::Reynolds;
-    ReynoldsGrid g;
-    g.n_phi = p_.grid_phi;
-    g.n_axial = p_.grid_axial;
-    g.cavitation = p_.cavitation;
-    reynolds_ =
-        std::make_shared<const ReynoldsFilm>(p_.radius, p_.width, p_.clearance, p_.viscosity, g);
+    try {
+      reynolds_ = std::make_shared<const ReynoldsFilm>(p_.radius, p_.width, p_.clearance,
+                                                       p_.viscosity, reynolds_grid(p_));
+    } catch (const InputError& ex) {
+      throw InputError(where + ": " + ex.what());
+    }
     if (p_.table) {
       if (!p_.cavitation)
         throw InputError(where +
                          ": solve 'table' needs cavitation 'swift-stieber' (the film "
                          "without cavitation is linear in W: use solve 'grid')");
+      if (p_.feed != "none")
+        throw InputError(where + ": solve 'table' holds for a plain bearing; feed '" + p_.feed +
+                         "' turns the film with the grooves (use solve 'grid')");
       table_ = FilmTable::shared(reynolds_, p_.radius, p_.width, p_.clearance, p_.viscosity,
                                  FilmTableSize{});
     }
   } else if (p_.film != "short") {
     throw InputError(where + ": unknown film '" + p_.film + "' (short, finite, reynolds)");
   }
+  if (p_.feed != "none" && film_ != Film::Reynolds)
+    throw InputError(where + ": feed '" + p_.feed + "' needs film 'reynolds' (film '" + p_.film +
+                     "' has no grooves)");
+}
+
+ReynoldsGrid reynolds_grid(const JournalBearingParams& p) {
+  ReynoldsGrid g;
+  g.n_phi = p.grid_phi;
+  g.n_axial = p.grid_axial;
+  g.cavitation = p.cavitation;
+  g.feed.supply_pressure = p.supply_pressure;
+  if (p.feed == "axial-grooves") {
+    g.feed.groove_arc = p.feed_arc * M_PI / 180.0;
+    for (int k = 0; k < p.feed_count; ++k)
+      g.feed.groove_angles.push_back((p.feed_angle + 360.0 * k / p.feed_count) * M_PI / 180.0);
+  } else if (p.feed == "circumferential-groove") {
+    if (!(p.feed_width > 0.0))
+      throw InputError("feed 'circumferential-groove' needs feed_width > 0 (the groove's width)");
+    g.feed.groove_width = p.feed_width;
+  }
+  return g;
 }
 
 FilmForce JournalBearing::hydro(const V2& e, const V2& ed, double om, double weight, bool derivs,
@@ -424,6 +448,8 @@ double JournalBearing::friction_torque(const V2& e, double om, const V2& f, doub
 }
 
 double JournalBearing::peak_pressure(const V2& e, const V2& ed, double om, double* angle) const {
+  if (film_ == Film::Reynolds && table_)
+    return table_->peak_pressure(e, ed - 0.5 * om * perp(e), angle);
   if (film_ == Film::Reynolds) {
     const ReynoldsSolution s = reynolds_->solve(e, ed - 0.5 * om * perp(e), false);
     if (angle) *angle = s.p_max_angle;
@@ -637,7 +663,24 @@ ElementType journal_bearing_element_type() {
                 "film 'reynolds': 'grid' = Reynolds' equation solved at every evaluation; "
                 "'table' = the same film tabulated once over the eccentricity ratio (to 0.99) "
                 "and the direction of W, interpolated (bicubic; the grid beyond 0.99)",
-                {"grid", "table"}, "table");
+                {"grid", "table"}, "table")
+          .choice(&P::feed, "feed",
+                  "film 'reynolds': how oil reaches the film: 'none'; 'axial-grooves' "
+                  "(feed_count grooves through the width, evenly spaced from feed_angle, each "
+                  "feed_arc wide, rounded to whole cells); 'circumferential-groove' (feed_width "
+                  "wide at the mid-plane: two lands); both at supply_pressure",
+                  {"none", "axial-grooves", "circumferential-groove"})
+          .number(&P::feed_angle, "feed_angle", "deg",
+                  "feed 'axial-grooves': the first groove's centre, from the bearing's x "
+                  "towards y")
+          .whole(&P::feed_count, "feed_count", "-", "feed 'axial-grooves': number of grooves", 1,
+                 64)
+          .number(&P::feed_arc, "feed_arc", "deg", "feed 'axial-grooves': arc of each groove",
+                  1e-300, 359.0)
+          .number(&P::feed_width, "feed_width", "m",
+                  "feed 'circumferential-groove': the groove's width (below the bearing's)", 0.0)
+          .number(&P::supply_pressure, "supply_pressure", "Pa",
+                  "feed: the oil's pressure in the grooves", 0.0);
   t.params = binding.specs();
   t.make = [](const std::string& name, const std::vector<int>& markers, const ParamValues& v) {
     return std::make_unique<JournalBearing>(name, markers,

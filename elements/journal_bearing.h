@@ -73,7 +73,19 @@ struct JournalBearingParams {
   int grid_phi = 72;       ///< reynolds: cells around the circumference
   int grid_axial = 8;      ///< reynolds: cells on the half width
   bool table = false;      ///< reynolds: solve at each evaluation (false) or tabulate (true)
+  /// reynolds: how oil reaches the film: "none", "axial-grooves" (feed_count
+  /// grooves through the width, evenly spaced from feed_angle, each feed_arc
+  /// wide) or "circumferential-groove" (feed_width wide at the mid-plane)
+  std::string feed = "none";
+  double feed_angle = 90.0;      ///< first axial groove's centre, bearing angle [deg]
+  int feed_count = 2;            ///< axial grooves
+  double feed_arc = 20.0;        ///< arc of each axial groove [deg]
+  double feed_width = 0.0;       ///< circumferential groove's width [m]
+  double supply_pressure = 0.0;  ///< pressure in the grooves [Pa]
 };
+
+/// The Reynolds film's grid and feed of a bearing's parameters.
+ReynoldsGrid reynolds_grid(const JournalBearingParams& p);
 
 class JournalBearing : public Element {
  public:

@@ -46,6 +46,7 @@ default_tests="test_scene test_scene_elements test_marker_fit test_body_file tes
   test_second_order_ls test_fast_nvector test_radau test_study_tasks
   test_arkode:-Arkode.RunsThePapersEngine test_amplification test_instability_named
   test_bathe:-Bathe.RunsThePapersEngine test_film_models:-FilmModels.ReynoldsGridConvergence
+  test_film_feed:-FilmFeed.TwoAxialGroovesMatchLundThomsen
   test_study_sweep:StudySweep.ForkedWorkers*"
 tests=""
 for t in ${SANITIZE_TESTS:-$default_tests}; do

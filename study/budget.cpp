@@ -218,6 +218,25 @@ std::string without_mode_cuts(const std::string& text, std::string& changed) {
   return e.c_str();
 }
 
+std::vector<std::string> finer_element_edits(const std::string& text, std::string& changed) {
+  changed.clear();
+  std::vector<std::string> edits;
+  const YAML::Node root = YAML::Load(text);
+  const YAML::Node elements = root["elements"];
+  if (!elements || !elements.IsSequence()) return edits;
+  for (const YAML::Node& e : elements) {
+    if (!e.IsMap() || e["type"].as<std::string>("") != "journal-bearing") continue;
+    const std::string name = e["name"].as<std::string>(""),
+                      film = e["film"].as<std::string>("short");
+    if (name.empty() || (film != "short" && film != "finite")) continue;
+    const bool table = e["cavitation"].as<std::string>("swift-stieber") != "none";
+    edits.push_back(name + ".film=reynolds");
+    edits.push_back(name + ".solve=" + std::string(table ? "table" : "grid"));
+    changed += (changed.empty() ? "" : ", ") + name;
+  }
+  return edits;
+}
+
 BudgetResult budget(const Options& opt_in, const BudgetOptions& bo) {
   if (!(bo.tighten > 1.0) || !std::isfinite(bo.tighten))
     throw InputError("--tighten must be a number > 1");
@@ -310,7 +329,29 @@ BudgetResult budget(const Options& opt_in, const BudgetOptions& bo) {
   // element models
   BudgetSource elem;
   elem.name = "element";
-  not_measured(elem, nc, "no element of the scene has a finer model in evas");
+  std::vector<std::string> finer = bo.finer;
+  if (!finer.empty()) {
+    elem.variation = "--finer " + detail::join(finer, " --finer ");
+  } else {
+    std::string changed;
+    finer = finer_element_edits(s.src.text, changed);
+    if (!finer.empty())
+      elem.variation = "film reynolds (Swift-Stieber) on the journal bearings " + changed;
+  }
+  if (elem.variation.empty() || detail::stopped(opt)) {
+    not_measured(elem, nc,
+                 elem.variation.empty()
+                     ? "no element of the scene has a finer model in evas (journal bearings: "
+                       "film reynolds is the finest; give --finer ITEM.KEY=VALUE, e.g. "
+                       "main1.grid_phi=144)"
+                     : "interrupted");
+  } else {
+    detail::say(opt, "budget: element (" + elem.variation + ")");
+    against(elem,
+            run_case(edited(s.src, finer, "--finer"), base_set, s.channels, nullptr, opt.stop),
+            base, rows, norm_of(s), bo.orders, "the finer element models",
+            "the base against the same run with the finer element models");
+  }
   res.sources.push_back(elem);
 
   for (std::size_t k = 0; k < res.sources.size(); ++k)

@@ -10,7 +10,9 @@
 //   basis        the scene on a richer modal basis: the edits of --richer
 //                (e.g. crank.file=richer.h5), or else every mode of the body
 //                files that the scene's `modes:` options leave out;
-//   element      a finer element model where one exists (none yet: said so).
+//   element      finer element models: the edits of --finer, or else every
+//                journal bearing on a film coarser than Reynolds' equation
+//                (short, finite) on film reynolds (tabulated where it can be);
 //
 // Each error is the study's measure (study/measure.h) over the base's last
 // cycle (or the whole output without a crank-angle grid), relative to the
@@ -33,6 +35,7 @@ namespace evas::study {
 
 struct BudgetOptions {
   std::vector<std::string> richer;  ///< ITEM.KEY=VALUE edits of the richer basis
+  std::vector<std::string> finer;   ///< ITEM.KEY=VALUE edits of the finer element models
   double tighten = 100.0;           ///< rtol, atol (or a fixed step) divided by this
   /// > 0: the errors of the engine orders up to this only (the last cycle's
   /// Fourier series of base and variation; a crank-angle grid)
@@ -72,6 +75,12 @@ Vec low_orders(const Vec& x, double orders);
 /// when the base run fails, InputError for bad input. Writes DIR/budget.csv
 /// (per channel), DIR/budget_sources.csv and DIR/budget.md.
 BudgetResult budget(const Options& opt, const BudgetOptions& bo);
+
+/// The edits that put every journal bearing of the scene text on a film finer
+/// than its own: `short` or `finite` -> `reynolds` (solve: table, or grid when
+/// the bearing has cavitation: none); `changed` names the elements ("" when
+/// none).
+std::vector<std::string> finer_element_edits(const std::string& text, std::string& changed);
 
 /// The scene text with the `modes:` cuts of every body removed (max_frequency,
 /// elastic, quasi_static_above): the bodies' whole files. `changed` names the

@@ -24,9 +24,13 @@
 #include "elements/bearing_static.h"
 #include "elements/film_finite.h"
 #include "elements/journal_bearing.h"
+#include "film_support.h"
 
 using namespace evas;
 using V2 = Eigen::Vector2d;
+using film_test::expect_jacobians_match;
+using film_test::json_number;
+using film_test::run_bearing;
 
 namespace {
 
@@ -198,45 +202,6 @@ TEST(FilmModels, ReynoldsGridConvergence) {
   }
 }
 
-namespace {
-
-// The analytic Jacobian of a bearing's film (through the element's hydro)
-// against central differences (steps h c in e, h m/s in ed, h 1e3 rad/s in om)
-// at three states with squeeze and whirl.
-void expect_jacobians_match(const JournalBearing& b, const std::string& label, double h) {
-  const double c = b.params().clearance;
-  for (const auto& st : std::vector<std::array<double, 5>>{{0.5, 0.2, 0.01, -0.004, 300.0},
-                                                           {-0.3, 0.6, -0.006, 0.002, 250.0},
-                                                           {0.1, -0.85, 0.0, 0.003, 400.0}}) {
-    const V2 e = V2(st[0], st[1]) * c, ed(st[2], st[3]);
-    const double om = st[4];
-    const FilmForce a = b.hydro(e, ed, om, 1.0, true, true);
-    auto f = [&](const V2& ee, const V2& edd, double w) {
-      return b.hydro(ee, edd, w, 1.0, false, true).f;
-    };
-    Eigen::Matrix2d ne, ned;
-    for (int j = 0; j < 2; ++j) {
-      V2 dp = V2::Zero();
-      dp[j] = h * c;
-      ne.col(j) = (f(e + dp, ed, om) - f(e - dp, ed, om)) / (2 * h * c);
-      dp[j] = h;
-      ned.col(j) = (f(e, ed + dp, om) - f(e, ed - dp, om)) / (2 * h);
-    }
-    const V2 nom = (f(e, ed, om + 1e3 * h) - f(e, ed, om - 1e3 * h)) / (2e3 * h);
-    const double se = ne.norm(), sd = ned.norm(), so = nom.norm();
-    std::printf(
-        "%-8s eps (%.2f, %.2f): |dF/de err| %.2e, |dF/ded err| %.2e, |dF/dom err| %.2e "
-        "(relative)\n",
-        label.c_str(), st[0], st[1], (a.df_de - ne).norm() / se, (a.df_ded - ned).norm() / sd,
-        (a.df_dom - nom).norm() / so);
-    EXPECT_LT((a.df_de - ne).norm(), 1e-5 * se) << label;
-    EXPECT_LT((a.df_ded - ned).norm(), 1e-5 * sd) << label;
-    EXPECT_LT((a.df_dom - nom).norm(), 1e-5 * so) << label;
-  }
-}
-
-}  // namespace
-
 // Jacobians of the finite and reynolds films against central differences.
 TEST(FilmModels, JacobiansMatchDifferences) {
   for (const std::string film : {"finite", "reynolds"})
@@ -283,7 +248,7 @@ TEST(FilmModels, TableMatchesTheFilmItTabulates) {
   p.table = true;
   const JournalBearing table = bearing(p);
   const double c = p.clearance;
-  double worst = 0.0;
+  double worst = 0.0, worst_p = 0.0, worst_a = 0.0;
   for (int k = 0; k < 40; ++k) {
     // states spread over eps 0.05..0.97, all directions of W, squeeze and whirl
     const double eps = 0.05 + 0.92 * std::fmod(0.618034 * k, 1.0);
@@ -293,9 +258,19 @@ TEST(FilmModels, TableMatchesTheFilmItTabulates) {
     const V2 fd = direct.hydro(e, ed, 300.0, 1.0, false, true).f;
     const V2 ft = table.hydro(e, ed, 300.0, 1.0, false, true).f;
     worst = std::max(worst, (ft - fd).norm() / fd.norm());
+    double ad = 0.0, at = 0.0;
+    const double pd = direct.peak_pressure(e, ed, 300.0, &ad);
+    const double pt = table.peak_pressure(e, ed, 300.0, &at);
+    worst_p = std::max(worst_p, std::abs(pt - pd) / pd);
+    worst_a = std::max(worst_a, std::abs(std::remainder(at - ad, 2.0 * M_PI)));
   }
-  std::printf("table against direct solves: worst relative force difference %.2e\n", worst);
+  std::printf(
+      "table against direct solves: worst relative force difference %.2e, peak pressure "
+      "%.2e, its angle %.2f deg (cells of %.1f deg)\n",
+      worst, worst_p, worst_a * 180.0 / M_PI, 360.0 / p.grid_phi);
   EXPECT_LT(worst, 5e-3);
+  EXPECT_LT(worst_p, 3e-2);                     // the grid's peak is a cell's value
+  EXPECT_LT(worst_a, 2.0 * M_PI / p.grid_phi);  // within a cell of the grid
   expect_jacobians_match(table, "table", 1e-7);
   // a journal at rest in its film (W = 0): no force; the derivative in ed is the
   // one-sided one for W along e, alike for the grid and its table, and a small
@@ -308,28 +283,6 @@ TEST(FilmModels, TableMatchesTheFilmItTabulates) {
   const V2 fh = direct.hydro(e0, h, 0.0, 1.0, false, true).f;
   EXPECT_LT((fh - g0.df_ded * h).norm(), 1e-9 * fh.norm());
 }
-
-namespace {
-
-// Runs `evas bearing ARGS` and returns its stdout and exit code.
-std::string run_bearing(const std::string& args, int& code) {
-  const std::string cmd = std::string(EVAS_BINARY_DIR) + "/evas bearing " + args + " 2>&1";
-  FILE* p = popen(cmd.c_str(), "r");
-  std::string out;
-  char buf[512];
-  while (p && fgets(buf, sizeof buf, p)) out += buf;
-  const int st = p ? pclose(p) : -1;
-  code = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-  return out;
-}
-
-double json_number(const std::string& json, const std::string& key) {
-  const std::size_t k = json.find("\"" + key + "\": ");
-  if (k == std::string::npos) return std::nan("");
-  return std::stod(json.substr(k + key.size() + 4));
-}
-
-}  // namespace
 
 // `evas bearing --json` gives the library's operating point (the same film code)
 // under the keys; bad input exits 1 with a message.

@@ -4,7 +4,11 @@
 # the Swift-Stieber condition, tabulated), Case 1 and Case 2: whole-process wall
 # time, each integrator's steps, and the main-bearing loads, orbits, minimum
 # film and friction power against reynolds (validation/engine/film_trade.py;
-# docs/elements-journal-bearing.md, "The films on the engine").
+# docs/elements-journal-bearing.md, "The films on the engine"). Every other
+# integrator of the catalogue runs Case 1 with the short and reynolds films.
+# FILM_TRADE_EXTRA adds films solved on the grid at each evaluation:
+# reynolds-grid (72 x 8), reynolds-grid36 (36 x 4), reynolds-groove36 (36 x 4
+# with a circumferential groove fed at 3 bar).
 #   usage: validation/engine/film_trade.sh BUILD_DIR OUT_DIR [END_TIME]
 set -eu
 if [ $# -lt 2 ]; then
@@ -29,23 +33,37 @@ film() {
       reynolds) printf ' --param main%s.film=reynolds --param main%s.solve=table' "$b" "$b" ;;
       reynolds-grid) printf ' --param main%s.film=reynolds --param main%s.solve=grid' "$b" "$b" ;;
       reynolds-grid36) printf ' --param main%s.film=reynolds --param main%s.solve=grid --param main%s.grid_phi=36 --param main%s.grid_axial=4' "$b" "$b" "$b" "$b" ;;
+      # a circumferential groove 4 mm wide at the mid-plane, fed at 3 bar (two lands of 15.5 mm)
+      reynolds-groove36) printf ' --param main%s.film=reynolds --param main%s.solve=grid --param main%s.grid_phi=36 --param main%s.grid_axial=4 --param main%s.feed=circumferential-groove --param main%s.feed_width=0.004 --param main%s.supply_pressure=3e5' "$b" "$b" "$b" "$b" "$b" "$b" "$b" ;;
       *) printf ' --param main%s.film=%s' "$b" "$1" ;;
     esac
   done
 }
 
-# integrator NAME: its --integrator/--set options (the scene's ida; cvode; generalized-alpha adaptive)
+# integrator NAME: its --integrator/--set options (the scene's ida; cvode; generalized-alpha
+# adaptive; and, Case 1 with the short and reynolds films only, the rest of the catalogue at
+# settings of the engine's work-precision diagram, validation/engine/work_precision.sh)
 integrator() {
   case $1 in
     ida) ;;
     cvode) printf ' --integrator cvode --set rtol=1e-5 --set atol=1e-9' ;;
     ga) printf ' --integrator generalized-alpha --set step_control=adaptive --set rtol=3e-4 --set atol=3e-8 --set step=8e-6' ;;
+    radau) printf ' --integrator radau --set step_control=adaptive --set step=1e-5 --set rtol=1e-4' ;;
+    hht) printf ' --integrator hht-alpha --set alpha=-0.1 --set step=5e-6' ;;
+    newmark) printf ' --integrator newmark --set step=5e-6' ;;
+    bathe) printf ' --integrator bathe --set step=5e-6' ;;
+    linacc) printf ' --integrator linear-acceleration --set iteration=effective-mass --set step=5e-6' ;;
+    arkode) printf ' --integrator arkode --set linear_solver=second-order --set rtol=1e-4' ;;
+    cd) printf ' --integrator central-difference --set step=2e-7' ;;
   esac
 }
+EXTRA_INTEGRATORS="radau hht newmark bathe linacc arkode cd"
 
 [ "${FILM_TRADE_PLOT_ONLY:-}" ] || for c in 1 2; do
   for f in short finite reynolds ${FILM_TRADE_EXTRA:-}; do
-    for i in ida cvode ga; do
+    more=""
+    [ "$c" = 1 ] && { [ "$f" = short ] || [ "$f" = reynolds ]; } && more=$EXTRA_INTEGRATORS
+    for i in ida cvode ga $more; do
       d=$out/case$c/$f/$i
       rm -rf "$d"
       s=$(date +%s.%N)
