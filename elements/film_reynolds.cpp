@@ -220,6 +220,7 @@ ReynoldsFilm::ReynoldsFilm(double radius, double width, double clearance, double
   }
   if (std::count(fed_.begin(), fed_.end(), 1) == n)
     throw InputError("Reynolds film: the axial grooves cover the whole circumference");
+  fed_any_ = inner_feed_ || std::count(fed_.begin(), fed_.end(), 1) > 0;
   face_scale_.assign(n, 1.0);
   for (int i = 0; i < n; ++i)
     if (fed_[i] != fed_[(i + n - 1) % n]) face_scale_[i] = 2.0;  // half a cell to the edge
@@ -271,8 +272,7 @@ ReynoldsSolution ReynoldsFilm::solve(const V2& e, const V2& W, bool derivs) cons
   for (int i = 0; i < np; ++i)
     if (fed_[i])
       for (int j = 0; j < nz; ++j) q_fix[idx(i, j)] = q_supply_;
-  const bool fed = inner_feed_ || std::count(fed_.begin(), fed_.end(), 1) > 0;
-  const Eigen::VectorXd rhs = fed ? Eigen::VectorXd(g - apply(aphi, az, q_fix)) : g;
+  const Eigen::VectorXd rhs = fed_any_ ? Eigen::VectorXd(g - apply(aphi, az, q_fix)) : g;
 
   // Active set: pressurized cells get the equation, the others q = 0. The
   // first set is the pi-film's (g > 0). (A start from the last call's final

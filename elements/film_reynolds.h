@@ -81,6 +81,7 @@ class ReynoldsFilm {
   double dxi_ = 0.0;                   ///< axial cell size / B
   double q_supply_ = 0.0;              ///< supply pressure in q's units
   bool inner_feed_ = false;            ///< a circumferential groove at the lands' inner ends
+  bool fed_any_ = false;               ///< any groove (the right side takes their pressure)
 };
 
 }  // namespace evas
