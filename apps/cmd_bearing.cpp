@@ -42,6 +42,9 @@ void print_json(const BearingOperatingPoint& r, const std::string& film, const s
             << ",\n  \"max_pressure\": " << num(r.max_pressure)
             << ",\n  \"max_pressure_angle_deg\": " << num(r.max_pressure_angle_deg)
             << ",\n  \"side_flow\": " << (r.side_flow ? num(*r.side_flow) : "null")
+            << ",\n  \"feed_flow\": " << (r.feed_flow ? num(*r.feed_flow) : "null")
+            << ",\n  \"film_fraction_min\": "
+            << (r.film_fraction_min ? num(*r.film_fraction_min) : "null")
             << ",\n  \"K\": " << matrix_json(r.K) << ",\n  \"C\": " << matrix_json(r.C) << "\n}\n";
 }
 
@@ -62,6 +65,8 @@ void print_table(const BearingOperatingPoint& r, const std::string& film) {
   row("maximum pressure", num(r.max_pressure), film == "finite" ? "Pa (estimate)" : "Pa");
   row("  at angle from the load", num(r.max_pressure_angle_deg), "deg");
   row("side flow", r.side_flow ? num(*r.side_flow) : "n/a", "m^3/s");
+  if (r.feed_flow) row("flow from the feed", num(*r.feed_flow), "m^3/s");
+  if (r.film_fraction_min) row("smallest film fraction", num(*r.film_fraction_min), "-");
   const char* k[4] = {"Kxx", "Kxy", "Kyx", "Kyy"};
   const char* c[4] = {"Cxx", "Cxy", "Cyx", "Cyy"};
   for (int i = 0; i < 4; ++i) row(k[i], num(r.K(i / 2, i % 2)), "N/m");
@@ -74,9 +79,11 @@ int cmd_bearing(const std::vector<std::string>& args) {
   po::options_description opts(
       "usage: evas bearing --radius R --width B --clearance C --viscosity ETA --speed RPM\n"
       "                    (--load W | --eccentricity EPS) [--film short|finite|reynolds]\n"
-      "                    [--cavitation swift-stieber|none] [--grid-phi N] [--grid-axial N]\n"
-      "                    [--feed none|axial-grooves|circumferential-groove] [--feed-angle DEG]\n"
-      "                    [--feed-count N] [--feed-arc DEG] [--feed-width M]\n"
+      "                    [--cavitation swift-stieber|none|mass-conserving]\n"
+      "                    [--grid-phi N] [--grid-axial N]\n"
+      "                    [--feed none|axial-grooves|oil-holes|circumferential-groove]\n"
+      "                    [--feed-angle DEG] [--feed-count N] [--feed-arc DEG]\n"
+      "                    [--feed-width M] [--feed-diameter M]\n"
       "                    [--supply-pressure PA] [--json]\n\n"
       "The static answer of one journal bearing (the journal spinning at RPM under a steady\n"
       "load W, or at the eccentricity ratio EPS): eccentricity, attitude angle, Sommerfeld\n"
@@ -92,7 +99,8 @@ int cmd_bearing(const std::vector<std::string>& args) {
   const JournalBearingParams defaults;
   std::string feed = defaults.feed;
   double feed_angle = defaults.feed_angle, feed_arc = defaults.feed_arc,
-         feed_width = defaults.feed_width, supply_pressure = defaults.supply_pressure;
+         feed_width = defaults.feed_width, feed_diameter = defaults.feed_diameter,
+         supply_pressure = defaults.supply_pressure;
   int feed_count = defaults.feed_count;
   int grid_phi = JournalBearingParams{}.grid_phi, grid_axial = JournalBearingParams{}.grid_axial;
   opts.add_options()("help,h", "show this help")("radius", po::value<double>(&radius),
@@ -105,21 +113,23 @@ int cmd_bearing(const std::vector<std::string>& args) {
       "eccentricity", po::value<double>(), "eccentricity ratio e/c instead of the load")(
       "film", po::value<std::string>(&film)->default_value(film), "short | finite | reynolds")(
       "cavitation", po::value<std::string>(&cavitation)->default_value(cavitation),
-      "film reynolds: swift-stieber | none")("grid-phi",
-                                             po::value<int>(&grid_phi)->default_value(grid_phi),
-                                             "film reynolds: cells around the circumference")(
+      "film reynolds: swift-stieber | none | mass-conserving (needs a feed)")(
+      "grid-phi", po::value<int>(&grid_phi)->default_value(grid_phi),
+      "film reynolds: cells around the circumference")(
       "grid-axial", po::value<int>(&grid_axial)->default_value(grid_axial),
       "film reynolds: cells on the half width")(
       "feed", po::value<std::string>(&feed)->default_value(feed),
-      "film reynolds: none | axial-grooves | circumferential-groove")(
+      "film reynolds: none | axial-grooves | oil-holes | circumferential-groove")(
       "feed-angle", po::value<double>(&feed_angle)->default_value(feed_angle),
-      "axial grooves: the first one's centre from the load [deg]")(
+      "axial grooves, oil holes: the first one's centre from the load [deg]")(
       "feed-count", po::value<int>(&feed_count)->default_value(feed_count),
-      "axial grooves: how many, evenly spaced")(
-      "feed-arc", po::value<double>(&feed_arc)->default_value(feed_arc),
-      "axial grooves: arc of each [deg]")("feed-width",
-                                          po::value<double>(&feed_width)->default_value(feed_width),
-                                          "circumferential groove: its width [m]")(
+      "axial grooves, oil holes: how many, evenly spaced")(
+      "feed-diameter", po::value<double>(&feed_diameter)->default_value(feed_diameter),
+      "oil holes: their diameter [m]")("feed-arc",
+                                       po::value<double>(&feed_arc)->default_value(feed_arc),
+                                       "axial grooves: arc of each [deg]")(
+      "feed-width", po::value<double>(&feed_width)->default_value(feed_width),
+      "circumferential groove: its width [m]")(
       "supply-pressure", po::value<double>(&supply_pressure)->default_value(supply_pressure),
       "oil pressure in the grooves [Pa]")("json", "print JSON instead of the table");
   po::variables_map vm;
@@ -143,6 +153,7 @@ int cmd_bearing(const std::vector<std::string>& args) {
   v.numbers["feed_count"] = {static_cast<double>(feed_count)};
   v.numbers["feed_arc"] = {feed_arc};
   v.numbers["feed_width"] = {feed_width};
+  v.numbers["feed_diameter"] = {feed_diameter};
   v.numbers["supply_pressure"] = {supply_pressure};
   v.texts["feed"] = feed;
   const std::string where = "the bearing's options";

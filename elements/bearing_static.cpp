@@ -19,7 +19,11 @@ using V2 = Eigen::Vector2d;
 // plain bearing turns with e (the Reynolds grid only to its accuracy), one of a
 // grooved bearing does not: the angle is found by secant steps on the force's
 // direction.
-V2 offset_against_load(const JournalBearing& b, double om, double eps, FilmForce* ff) {
+// With `none` given, a film that no direction aligns with the load (a feed's
+// own push outweighing the film at small eps) sets *none and returns; else that
+// is an error.
+V2 offset_against_load(const JournalBearing& b, double om, double eps, FilmForce* ff,
+                       bool* none = nullptr) {
   const JournalBearingParams& p = b.params();
   auto off = [&](double a, V2* e) {  // angle of the load, from x
     *e = eps * p.clearance * V2(std::cos(a), std::sin(a));
@@ -40,25 +44,38 @@ V2 offset_against_load(const JournalBearing& b, double om, double eps, FilmForce
   if (std::abs(o1) < 1e-13) return e;
   // The force's direction jumps where a cell of the grid changes state: no
   // secant root. Bisect a bracket of the sign change down to the jump.
+  FilmForce f_hi = *ff;  // at a1
   double lo = a1, hi = a1, olo = o1, step = 1e-3;
   while (olo * o1 > 0.0 && step < 1.0) {  // the load turns the other way with the angle
     lo = a1 - (o1 > 0.0 ? step : -step);
     olo = off(lo, &e);
     step *= 2.0;
   }
+  if (olo * o1 > 0.0 && none) {
+    *none = true;
+    return e;
+  }
   if (olo * o1 > 0.0)
     throw RunError("no journal position at eccentricity ratio " + std::to_string(eps) +
                    " carries the load along its line");
   double ohi = o1;
+  FilmForce f_lo = *ff;  // at lo
   for (int it = 0; it < 60 && std::abs(hi - lo) > 1e-15; ++it) {
     const double mid = 0.5 * (lo + hi), omid = off(mid, &e);
     if (omid * ohi > 0.0)
-      hi = mid, ohi = omid;
+      hi = mid, ohi = omid, f_hi = *ff;
     else
-      lo = mid, olo = omid;
+      lo = mid, olo = omid, f_lo = *ff;
   }
-  const double best = std::abs(olo) < std::abs(ohi) ? lo : hi;
-  const double left = off(best, &e);
+  // the end with the smaller remainder, its force kept (no solve again)
+  const bool low = std::abs(olo) < std::abs(ohi);
+  const double left = low ? olo : ohi;
+  *ff = low ? f_lo : f_hi;
+  e = eps * p.clearance * V2(std::cos(low ? lo : hi), std::sin(low ? lo : hi));
+  if (none && std::abs(left) > 0.5 * M_PI) {  // the bracket held the turn through +-pi
+    *none = true;
+    return e;
+  }
   if (std::abs(left) > 2e-3)
     throw RunError("at eccentricity ratio " + std::to_string(eps) + " the film's force turns by " +
                    std::to_string(std::abs(left)) +
@@ -66,11 +83,14 @@ V2 offset_against_load(const JournalBearing& b, double om, double eps, FilmForce
   return e;
 }
 
-// Film force magnitude at eccentricity ratio eps, the load along x.
+// Film force magnitude at eccentricity ratio eps, the load along x; 0 where
+// no direction carries a load along its line (a fed oil hole or groove pushes
+// the journal harder than the film at small eps: a larger eps is needed).
 double carried(const JournalBearing& b, double om, double eps) {
   FilmForce ff;
-  offset_against_load(b, om, eps, &ff);
-  return ff.f.norm();
+  bool none = false;
+  offset_against_load(b, om, eps, &ff, &none);
+  return none ? 0.0 : ff.f.norm();
 }
 
 }  // namespace
@@ -100,10 +120,13 @@ BearingOperatingPoint bearing_at_eccentricity(const JournalBearing& b, double om
   const V2 W = -0.5 * om * V2(-e.y(), e.x());
   if (p.film == "short") {
     r.side_flow = 2.0 * p.radius * p.width * W.norm();  // B g at each end over g > 0
-  } else if (p.film == "reynolds") {
-    r.side_flow = ReynoldsFilm(p.radius, p.width, c, p.viscosity, reynolds_grid(p))
-                      .solve(e, W, false)
-                      .side_flow;
+  } else if (const ReynoldsFilm* film = b.reynolds_film(); film && film->grid().mass_conserving) {
+    const ReynoldsSolution s = film->solve_mass_conserving(e, V2::Zero(), om, false);
+    r.side_flow = s.side_flow;
+    r.feed_flow = s.feed_flow;
+    r.film_fraction_min = s.theta_min;
+  } else if (film) {
+    r.side_flow = film->solve(e, W, false).side_flow;
   }
   r.K = -ff.df_de;
   r.C = -ff.df_ded;

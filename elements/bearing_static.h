@@ -25,6 +25,9 @@ struct BearingOperatingPoint {
   double max_pressure = 0.0;            ///< [Pa] (finite film: estimate, docs)
   double max_pressure_angle_deg = 0.0;  ///< from the load line, towards +y [deg]
   std::optional<double> side_flow;      ///< out of both ends [m^3/s] (none for finite)
+  /// cavitation mass-conserving: flow out of the grooves into the film [m^3/s]
+  /// (equal to the side flow: the film's mass balance) and the smallest film fraction
+  std::optional<double> feed_flow, film_fraction_min;
   Eigen::Matrix2d K = Eigen::Matrix2d::Zero();  ///< -d f / d e [N/m], x along the load
   Eigen::Matrix2d C = Eigen::Matrix2d::Zero();  ///< -d f / d edot [N s/m]
 };

@@ -220,13 +220,45 @@ ReynoldsFilm::ReynoldsFilm(double radius, double width, double clearance, double
   }
   if (std::count(fed_.begin(), fed_.end(), 1) == n)
     throw InputError("Reynolds film: the axial grooves cover the whole circumference");
-  fed_any_ = inner_feed_ || std::count(fed_.begin(), fed_.end(), 1) > 0;
+  const int nz = grid_.n_axial;
+  held_.assign(static_cast<std::size_t>(n) * nz, 0);
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < nz; ++j) held_[i * nz + j] = fed_[i];
+  for (double a : feed.hole_angles) {
+    if (!(feed.hole_diameter > 0.0 && feed.hole_diameter < B_ - feed.groove_width))
+      throw InputError("Reynolds film: an oil hole " + format_number(feed.hole_diameter) +
+                       " m across must lie between 0 and the bearing width " + format_number(B_) +
+                       " m");
+    int cells = 0;
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; j < nz; ++j) {  // from the cell centre to the hole's, in metres
+        const double s = R_ * std::remainder((i + 0.5) * dphi - a, 2.0 * M_PI);
+        const double x = (nz - j - 0.5) * dxi_ * B_;  // from the mid-plane
+        if (s * s + x * x < 0.25 * feed.hole_diameter * feed.hole_diameter)
+          held_[i * nz + j] = 1, ++cells;
+      }
+    if (cells == 0)
+      throw InputError("Reynolds film: the oil hole at " + deg(a) + " deg, " +
+                       format_number(feed.hole_diameter) +
+                       " m across, holds no cell centre of the grid (cells of " +
+                       format_number(R_ * dphi) + " x " + format_number(dxi_ * B_) +
+                       " m): raise grid_phi and grid_axial");
+  }
+  const bool held_any = std::count(held_.begin(), held_.end(), 1) > 0;
+  fed_any_ = inner_feed_ || held_any;
+  if (grid_.mass_conserving && !held_any && !(inner_feed_ && q_supply_ > 0.0))
+    throw InputError(
+        "Reynolds film: mass-conserving cavitation needs a feed that brings oil into the film "
+        "(axial grooves or oil holes, or a circumferential groove with a supply pressure above "
+        "0): without one the side leakage empties it");
   face_scale_.assign(n, 1.0);
   for (int i = 0; i < n; ++i)
     if (fed_[i] != fed_[(i + n - 1) % n]) face_scale_[i] = 2.0;  // half a cell to the edge
 }
 
 ReynoldsSolution ReynoldsFilm::solve(const V2& e, const V2& W, bool derivs) const {
+  if (grid_.mass_conserving)  // its Couette and squeeze parts do not combine into W
+    throw InputError("Reynolds film: the mass-conserving film is solved by solve_mass_conserving");
   const int np = grid_.n_phi, nz = grid_.n_axial, n = np * nz;
   const double dphi = 2.0 * M_PI / np, dxi = dxi_;
   const double rb2 = (R_ / B_) * (R_ / B_);
@@ -268,10 +300,12 @@ ReynoldsSolution ReynoldsFilm::solve(const V2& e, const V2& W, bool derivs) cons
   // The grooves' pressure: q_fix on the axial grooves' cells (0 elsewhere); the
   // system on the other cells has the right side g - A q_fix (the circumferential
   // groove's part inside apply)
-  Eigen::VectorXd q_fix = Eigen::VectorXd::Zero(n);
-  for (int i = 0; i < np; ++i)
-    if (fed_[i])
-      for (int j = 0; j < nz; ++j) q_fix[idx(i, j)] = q_supply_;
+  Eigen::VectorXd q_fix;
+  if (fed_any_) {
+    q_fix = Eigen::VectorXd::Zero(n);
+    for (int k = 0; k < n; ++k)
+      if (held_[k]) q_fix[k] = q_supply_;
+  }
   const Eigen::VectorXd rhs = fed_any_ ? Eigen::VectorXd(g - apply(aphi, az, q_fix)) : g;
 
   // Active set: pressurized cells get the equation, the others q = 0. The
@@ -279,7 +313,7 @@ ReynoldsSolution ReynoldsFilm::solve(const V2& e, const V2& W, bool derivs) cons
   // set took more sets on the engine, 3.9 against 3.3 per solve: consecutive
   // calls come from the other axial station and from the corrector's trials.)
   std::vector<char> on(n);
-  for (int k = 0; k < n; ++k) on[k] = !fed_[k / nz] && (!grid_.cavitation || rhs[k] > 0.0);
+  for (int k = 0; k < n; ++k) on[k] = !held_[k] && (!grid_.cavitation || rhs[k] > 0.0);
   // W = 0 (a journal at rest in its film): no pressure, and f, of degree one in
   // W, has a kink there; the set and the derivatives are the one-sided ones for
   // W along e (along x at the centre), as the table's (film_table.h)
@@ -289,7 +323,7 @@ ReynoldsSolution ReynoldsFilm::solve(const V2& e, const V2& W, bool derivs) cons
     const V2 dir = en > 0.0 ? V2(e / en) : V2(1.0, 0.0);
     for (int i = 0; i < np; ++i)
       for (int j = 0; j < nz; ++j) g[idx(i, j)] = dir.x() * cos_c_[i] + dir.y() * sin_c_[i];
-    for (int k = 0; k < n; ++k) on[k] = !fed_[k / nz] && g[k] > 0.0;
+    for (int k = 0; k < n; ++k) on[k] = !held_[k] && g[k] > 0.0;
   }
   Eigen::VectorXd q = Eigen::VectorXd::Zero(n);
   FilmSystem sys(np, nz, aphi, az, inner_feed_);
@@ -299,12 +333,13 @@ ReynoldsSolution ReynoldsFilm::solve(const V2& e, const V2& W, bool derivs) cons
       throw RunError("Reynolds film: the cavitation boundary did not settle in 100 active sets");
     ++s.active_sets;
     sys.factor(on);
-    q = sys.solve(at_rest ? g : rhs) + q_fix;
+    q = sys.solve(at_rest ? g : rhs);
+    if (fed_any_) q += q_fix;
     if (!grid_.cavitation) break;
     const Eigen::VectorXd lambda = apply(aphi, az, q) - g;
     bool changed = false;
     for (int k = 0; k < n; ++k) {
-      if (fed_[k / nz]) continue;
+      if (held_[k]) continue;
       const char now = on[k] ? (q[k] >= 0.0) : !(lambda[k] > 0.0);
       changed |= now != on[k];
       on[k] = now;

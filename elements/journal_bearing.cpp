@@ -153,10 +153,9 @@ JournalBearing::JournalBearing(std::string name, std::vector<int> markers,
       throw InputError(where + ": " + ex.what());
     }
     if (p_.table) {
-      if (!p_.cavitation)
-        throw InputError(where +
-                         ": solve 'table' needs cavitation 'swift-stieber' (the film "
-                         "without cavitation is linear in W: use solve 'grid')");
+      if (p_.cavitation != "swift-stieber")
+        throw InputError(where + ": solve 'table' needs cavitation 'swift-stieber' (cavitation '" +
+                         p_.cavitation + "': use solve 'grid')");
       if (p_.feed != "none")
         throw InputError(where + ": solve 'table' holds for a plain bearing; feed '" + p_.feed +
                          "' turns the film with the grooves (use solve 'grid')");
@@ -175,12 +174,20 @@ ReynoldsGrid reynolds_grid(const JournalBearingParams& p) {
   ReynoldsGrid g;
   g.n_phi = p.grid_phi;
   g.n_axial = p.grid_axial;
-  g.cavitation = p.cavitation;
+  g.cavitation = p.cavitation != "none";
+  g.mass_conserving = p.cavitation == "mass-conserving";
   g.feed.supply_pressure = p.supply_pressure;
+  std::vector<double> angles;  // feed_count evenly spaced from feed_angle [rad]
+  for (int k = 0; k < p.feed_count; ++k)
+    angles.push_back((p.feed_angle + 360.0 * k / p.feed_count) * M_PI / 180.0);
   if (p.feed == "axial-grooves") {
     g.feed.groove_arc = p.feed_arc * M_PI / 180.0;
-    for (int k = 0; k < p.feed_count; ++k)
-      g.feed.groove_angles.push_back((p.feed_angle + 360.0 * k / p.feed_count) * M_PI / 180.0);
+    g.feed.groove_angles = angles;
+  } else if (p.feed == "oil-holes") {
+    if (!(p.feed_diameter > 0.0))
+      throw InputError("feed 'oil-holes' needs feed_diameter > 0 (the holes' diameter)");
+    g.feed.hole_diameter = p.feed_diameter;
+    g.feed.hole_angles = angles;
   } else if (p.feed == "circumferential-groove") {
     if (!(p.feed_width > 0.0))
       throw InputError("feed 'circumferential-groove' needs feed_width > 0 (the groove's width)");
@@ -198,15 +205,18 @@ FilmForce JournalBearing::hydro(const V2& e, const V2& ed, double om, double wei
   } else {
     // the film is a function of e and W = ed - (om/2) J e (journal_bearing.h)
     const V2 W = ed - 0.5 * om * perp(e);
-    M2 df_de, df_dW;
+    M2 df_de = M2::Zero(), df_dW = M2::Zero();
     if (table_) {
       const FilmForce t = table_->force(e, W, derivs);
       r.f = t.f, df_de = t.df_de, df_dW = t.df_ded;
+    } else if (reynolds_->grid().mass_conserving) {  // in e, ed and om, not W alone
+      const ReynoldsSolution s = reynolds_->solve_mass_conserving(e, ed, om, derivs);
+      r.f = s.f, r.df_de = s.df_de, r.df_ded = s.df_dW, r.df_dom = s.df_dom;
     } else {
       const ReynoldsSolution s = reynolds_->solve(e, W, derivs);
       r.f = s.f, df_de = s.df_de, df_dW = s.df_dW;
     }
-    if (derivs) {
+    if (derivs && !reynolds_->grid().mass_conserving) {
       r.df_ded = df_dW;
       r.df_de = df_de - 0.5 * om * df_dW * J2();
       r.df_dom = -0.5 * df_dW * perp(e);
@@ -451,7 +461,9 @@ double JournalBearing::peak_pressure(const V2& e, const V2& ed, double om, doubl
   if (film_ == Film::Reynolds && table_)
     return table_->peak_pressure(e, ed - 0.5 * om * perp(e), angle);
   if (film_ == Film::Reynolds) {
-    const ReynoldsSolution s = reynolds_->solve(e, ed - 0.5 * om * perp(e), false);
+    const ReynoldsSolution s = reynolds_->grid().mass_conserving
+                                   ? reynolds_->solve_mass_conserving(e, ed, om, false)
+                                   : reynolds_->solve(e, ed - 0.5 * om * perp(e), false);
     if (angle) *angle = s.p_max_angle;
     return s.p_max;
   }
@@ -648,11 +660,13 @@ ElementType journal_bearing_element_type() {
                   "Butenschoen's closed form for finite width (B/D 0.125 to 1); 'reynolds' = "
                   "Reynolds' equation on a grid_phi x grid_axial grid",
                   {"short", "finite", "reynolds"})
-          .flag(&P::cavitation, "cavitation",
-                "film 'reynolds': 'swift-stieber' = p >= 0 with the Reynolds (Swift-Stieber) "
-                "condition at the film's rupture; 'none' = the full Sommerfeld film (negative "
-                "pressures kept)",
-                {"swift-stieber", "none"}, "swift-stieber")
+          .choice(&P::cavitation, "cavitation",
+                  "film 'reynolds': 'swift-stieber' = p >= 0 with the Reynolds (Swift-Stieber) "
+                  "condition at the film's rupture; 'none' = the full Sommerfeld film (negative "
+                  "pressures kept); 'mass-conserving' = Elrod-Adams' film fraction, the "
+                  "ruptured film carried on and re-formed (needs a feed; evas bearing only: "
+                  "not yet in a run)",
+                  {"swift-stieber", "none", "mass-conserving"})
           .whole(&P::grid_phi, "grid_phi", "-", "film 'reynolds': cells around the circumference",
                  8, 4096)
           .whole(&P::grid_axial, "grid_axial", "-",
@@ -667,18 +681,22 @@ ElementType journal_bearing_element_type() {
           .choice(&P::feed, "feed",
                   "film 'reynolds': how oil reaches the film: 'none'; 'axial-grooves' "
                   "(feed_count grooves through the width, evenly spaced from feed_angle, each "
-                  "feed_arc wide, rounded to whole cells); 'circumferential-groove' (feed_width "
-                  "wide at the mid-plane: two lands); both at supply_pressure",
-                  {"none", "axial-grooves", "circumferential-groove"})
+                  "feed_arc wide, rounded to whole cells); 'oil-holes' (feed_count round holes "
+                  "feed_diameter across at the mid-plane, evenly spaced from feed_angle: the "
+                  "cells whose centres lie inside); 'circumferential-groove' (feed_width wide at "
+                  "the mid-plane: two lands); all at supply_pressure",
+                  {"none", "axial-grooves", "oil-holes", "circumferential-groove"})
           .number(&P::feed_angle, "feed_angle", "deg",
-                  "feed 'axial-grooves': the first groove's centre, from the bearing's x "
-                  "towards y")
-          .whole(&P::feed_count, "feed_count", "-", "feed 'axial-grooves': number of grooves", 1,
-                 64)
+                  "feed 'axial-grooves', 'oil-holes': the first one's centre, from the bearing's "
+                  "x towards y")
+          .whole(&P::feed_count, "feed_count", "-",
+                 "feed 'axial-grooves', 'oil-holes': how many, evenly spaced", 1, 64)
           .number(&P::feed_arc, "feed_arc", "deg", "feed 'axial-grooves': arc of each groove",
                   1e-300, 359.0)
           .number(&P::feed_width, "feed_width", "m",
                   "feed 'circumferential-groove': the groove's width (below the bearing's)", 0.0)
+          .number(&P::feed_diameter, "feed_diameter", "m",
+                  "feed 'oil-holes': each hole's diameter (below the bearing's width)", 0.0)
           .number(&P::supply_pressure, "supply_pressure", "Pa",
                   "feed: the oil's pressure in the grooves", 0.0);
   t.params = binding.specs();

@@ -69,18 +69,23 @@ struct JournalBearingParams {
   /// film model: "short" (the paper's), "finite" (Butenschoen's closed form),
   /// "reynolds" (Reynolds' equation on a grid)
   std::string film = "short";
-  bool cavitation = true;  ///< reynolds: Swift-Stieber (true) or none (full Sommerfeld film)
-  int grid_phi = 72;       ///< reynolds: cells around the circumference
-  int grid_axial = 8;      ///< reynolds: cells on the half width
-  bool table = false;      ///< reynolds: solve at each evaluation (false) or tabulate (true)
+  /// reynolds: "swift-stieber", "none" (the full Sommerfeld film) or
+  /// "mass-conserving" (Elrod-Adams; evas bearing's static answer only)
+  std::string cavitation = "swift-stieber";
+  int grid_phi = 72;   ///< reynolds: cells around the circumference
+  int grid_axial = 8;  ///< reynolds: cells on the half width
+  bool table = false;  ///< reynolds: solve at each evaluation (false) or tabulate (true)
   /// reynolds: how oil reaches the film: "none", "axial-grooves" (feed_count
   /// grooves through the width, evenly spaced from feed_angle, each feed_arc
-  /// wide) or "circumferential-groove" (feed_width wide at the mid-plane)
+  /// wide), "oil-holes" (feed_count holes feed_diameter across at the mid-plane,
+  /// evenly spaced from feed_angle) or "circumferential-groove" (feed_width
+  /// wide at the mid-plane)
   std::string feed = "none";
   double feed_angle = 90.0;      ///< first axial groove's centre, bearing angle [deg]
   int feed_count = 2;            ///< axial grooves
   double feed_arc = 20.0;        ///< arc of each axial groove [deg]
   double feed_width = 0.0;       ///< circumferential groove's width [m]
+  double feed_diameter = 0.0;    ///< oil holes' diameter [m]
   double supply_pressure = 0.0;  ///< pressure in the grooves [Pa]
 };
 
@@ -104,6 +109,11 @@ class JournalBearing : public Element {
   /// full width) for eccentricity e, its rate ed, relative spin om, with
   /// derivatives when `derivs`. Throws RunError for eps >= eps_max (no
   /// contact) or e >= c. Public for tests.
+  /// The film is for a static answer only (cavitation mass-conserving: its
+  /// film fraction has no history yet), not for a run.
+  bool static_only() const { return film_ == Film::Reynolds && p_.cavitation == "mass-conserving"; }
+  /// The Reynolds film's grid solver (film = reynolds), else null.
+  const ReynoldsFilm* reynolds_film() const { return reynolds_.get(); }
   FilmForce film(double t, const Eigen::Vector2d& e, const Eigen::Vector2d& ed, double om,
                  double weight, bool derivs) const;
   /// Hydrodynamic part only by the chosen film model (and, for the short

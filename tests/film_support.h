@@ -1,6 +1,6 @@
-// Helpers of the film tests (test_film_models.cpp, test_film_feed.cpp): a
-// film's Jacobian against central differences, and `evas bearing` run as a
-// process.
+// Helpers of the film tests (test_film_models.cpp, test_film_feed.cpp,
+// test_film_cavitation.cpp): Raimondi & Boyd's table, a film's Jacobian against
+// central differences, and `evas bearing` run as a process.
 #pragma once
 
 #include <gtest/gtest.h>
@@ -15,6 +15,36 @@
 #include "elements/journal_bearing.h"
 
 namespace evas::film_test {
+
+// One row of Raimondi & Boyd's table: eps, S, attitude [deg], (R/c) f.
+struct RBRow {
+  double eps, S, phi, f;
+};
+struct RBTable {
+  double l_over_d;
+  std::vector<RBRow> rows;
+};
+inline const std::vector<RBTable>& raimondi_boyd() {
+  static const std::vector<RBTable> t = {{1.0,
+                                          {{0.2, 0.631, 74.02, 12.8},
+                                           {0.4, 0.264, 63.10, 5.79},
+                                           {0.6, 0.121, 50.58, 3.22},
+                                           {0.8, 0.0446, 36.24, 1.70},
+                                           {0.9, 0.0188, 26.45, 1.05}}},
+                                         {0.5,
+                                          {{0.2, 2.03, 74.94, 40.9},
+                                           {0.4, 0.779, 61.45, 17.0},
+                                           {0.6, 0.319, 48.14, 8.10},
+                                           {0.8, 0.0923, 33.31, 3.26},
+                                           {0.9, 0.0313, 23.66, 1.60}}},
+                                         {0.25,
+                                          {{0.2, 7.57, 75.18, 153.0},
+                                           {0.4, 2.83, 60.86, 61.1},
+                                           {0.6, 1.07, 46.72, 26.7},
+                                           {0.8, 0.261, 31.04, 8.80},
+                                           {0.9, 0.0736, 21.85, 3.50}}}};
+  return t;
+}
 
 using V2 = Eigen::Vector2d;
 

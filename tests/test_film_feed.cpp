@@ -13,6 +13,9 @@
 //   - the supply pressure of a circumferential groove drives a linear axial
 //     pressure through a centred, still journal: side flow
 //     Q = 2 (2 pi R) c^3 p_s / (12 eta L_land) (Hagen-Poiseuille in a slit);
+//   - oil holes (round, at the mid-plane): a still, centred journal fed by one
+//     hole is pushed away from it, by two opposite ones not at all; the
+//     hole's cells hold the supply pressure;
 //   - the Jacobians against central differences.
 #include <gtest/gtest.h>
 
@@ -158,6 +161,33 @@ TEST(FilmFeed, SupplyPressureDrivesTheSlitFlow) {
   EXPECT_NEAR(s.p_max, g.supply_pressure * (1.0 - 0.5 / 8.0), 1e-9 * g.supply_pressure);
 }
 
+// Oil holes through a centred, still journal: the hole's cells at the supply
+// pressure, the journal pushed away from a single hole (by two opposite ones
+// not at all), oil leaving at the ends.
+TEST(FilmFeed, OilHolesPushTheJournalAway) {
+  JournalBearingParams g = grooved(0.5, 72, 8);
+  g.feed = "oil-holes";
+  g.feed_count = 1;
+  g.feed_angle = 30.0;
+  g.feed_diameter = 0.006;  // cells of 4.4 x 3.1 mm: the two next to the mid-plane
+  g.supply_pressure = 3e5;
+  const ReynoldsFilm one(g.radius, g.width, g.clearance, g.viscosity, reynolds_grid(g));
+  const ReynoldsSolution s = one.solve(V2::Zero(), V2::Zero(), false);
+  const V2 u(std::cos(M_PI / 6.0), std::sin(M_PI / 6.0));
+  std::printf("one hole: f = (%.4g, %.4g) N, side flow %.4e m^3/s, %d cells under pressure\n",
+              s.f.x(), s.f.y(), s.side_flow, s.pressurized);
+  EXPECT_DOUBLE_EQ(s.p_max, g.supply_pressure);
+  EXPECT_LT(s.f.dot(u), -0.999 * s.f.norm());  // straight away from the hole
+  EXPECT_GT(s.side_flow, 0.0);
+  EXPECT_EQ(s.pressurized, 2 * 72 * 8);  // the whole film, fed by the hole
+  g.feed_count = 2;
+  const ReynoldsFilm two(g.radius, g.width, g.clearance, g.viscosity, reynolds_grid(g));
+  const ReynoldsSolution t = two.solve(V2::Zero(), V2::Zero(), false);
+  EXPECT_LT(t.f.norm(), 1e-9 * s.f.norm());
+  EXPECT_NEAR(t.side_flow, 2.0 * s.side_flow, 0.5 * s.side_flow);  // more oil, not twice
+  EXPECT_LT(t.side_flow, 2.0 * s.side_flow);
+}
+
 // The grooved films' Jacobians against central differences (with the supply
 // pressure, so that the grooves' fixed pressure enters the derivatives).
 TEST(FilmFeed, JacobiansMatchDifferences) {
@@ -169,6 +199,13 @@ TEST(FilmFeed, JacobiansMatchDifferences) {
   c.feed_width = 0.008;
   c.supply_pressure = 2e5;
   expect_jacobians_match(bearing(c), "circ", 1e-6);
+  JournalBearingParams h = grooved(0.5, 72, 8);
+  h.feed = "oil-holes";
+  h.feed_count = 1;
+  h.feed_angle = 150.0;
+  h.feed_diameter = 0.006;
+  h.supply_pressure = 2e5;
+  expect_jacobians_match(bearing(h), "hole", 1e-6);
 }
 
 // Bad feed settings are refused with a message naming the bearing and the item.
@@ -200,6 +237,13 @@ TEST(FilmFeed, BadFeedIsRefused) {
   p = grooved(0.5, 72, 8);
   p.supply_pressure = -1.0;
   refused(p, "below 0");
+  p = grooved(0.5, 72, 8);
+  p.feed = "oil-holes";
+  refused(p, "needs feed_diameter");
+  p.feed_diameter = 0.001;  // cells of 4.4 x 3.1 mm
+  refused(p, "holds no cell centre");
+  p.feed_diameter = 0.06;
+  refused(p, "must lie between 0 and the bearing width");
 }
 
 // `evas bearing` with grooves: the library's answer, the feed named in the JSON;
@@ -216,11 +260,19 @@ TEST(FilmFeed, BearingCommandTakesTheFeed) {
   EXPECT_NE(js.find("\"feed\": \"axial-grooves\""), std::string::npos) << js;
   EXPECT_NEAR(json_number(js, "eccentricity"), ref.eccentricity, 1e-9);
   EXPECT_NEAR(json_number(js, "attitude_deg"), ref.attitude_deg, 1e-7);
+  const std::string hole = run_bearing(
+      base +
+          "--load 800 --feed oil-holes --feed-count 1 --feed-diameter 0.006 --feed-angle 180 "
+          "--supply-pressure 2e5 --json",
+      code);
+  ASSERT_EQ(code, 0) << hole;
+  EXPECT_NE(hole.find("\"feed\": \"oil-holes\""), std::string::npos) << hole;
   for (const std::string bad :
        {"--load 800 --feed circumferential-groove --feed-width 0.07",
         "--load 800 --feed axial-grooves --supply-pressure -2e5", "--load 800 --feed bogus",
         "--load 800 --feed axial-grooves --feed-arc 1",
-        "--load 800 --feed axial-grooves --feed-count 0"}) {
+        "--load 800 --feed axial-grooves --feed-count 0",
+        "--load 800 --feed oil-holes --feed-diameter 0.0005"}) {
     const std::string out = run_bearing(base + bad, code);
     EXPECT_EQ(code, 1) << bad << "\n" << out;
     EXPECT_NE(out.find("evas bearing: "), std::string::npos) << out;

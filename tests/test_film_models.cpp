@@ -30,6 +30,9 @@ using namespace evas;
 using V2 = Eigen::Vector2d;
 using film_test::expect_jacobians_match;
 using film_test::json_number;
+using film_test::raimondi_boyd;
+using film_test::RBRow;
+using film_test::RBTable;
 using film_test::run_bearing;
 
 namespace {
@@ -48,36 +51,6 @@ JournalBearingParams params(const std::string& film, double l_over_d, int grid_p
 }
 
 JournalBearing bearing(const JournalBearingParams& p) { return JournalBearing("b", {0, 1}, p); }
-
-// One row of Raimondi & Boyd's table: eps, S, attitude [deg], (R/c) f.
-struct RBRow {
-  double eps, S, phi, f;
-};
-struct RBTable {
-  double l_over_d;
-  std::vector<RBRow> rows;
-};
-const std::vector<RBTable>& raimondi_boyd() {
-  static const std::vector<RBTable> t = {{1.0,
-                                          {{0.2, 0.631, 74.02, 12.8},
-                                           {0.4, 0.264, 63.10, 5.79},
-                                           {0.6, 0.121, 50.58, 3.22},
-                                           {0.8, 0.0446, 36.24, 1.70},
-                                           {0.9, 0.0188, 26.45, 1.05}}},
-                                         {0.5,
-                                          {{0.2, 2.03, 74.94, 40.9},
-                                           {0.4, 0.779, 61.45, 17.0},
-                                           {0.6, 0.319, 48.14, 8.10},
-                                           {0.8, 0.0923, 33.31, 3.26},
-                                           {0.9, 0.0313, 23.66, 1.60}}},
-                                         {0.25,
-                                          {{0.2, 7.57, 75.18, 153.0},
-                                           {0.4, 2.83, 60.86, 61.1},
-                                           {0.6, 1.07, 46.72, 26.7},
-                                           {0.8, 0.261, 31.04, 8.80},
-                                           {0.9, 0.0736, 21.85, 3.50}}}};
-  return t;
-}
 
 constexpr double kOmega = 300.0;  // rad/s
 
@@ -166,7 +139,7 @@ TEST(FilmModels, LongBearingLimitIsSommerfeld) {
   double prev = 1.0;
   for (double ld : {4.0, 16.0}) {
     JournalBearingParams p = params("reynolds", ld, 96, static_cast<int>(4 * ld));
-    p.cavitation = false;
+    p.cavitation = "none";
     const JournalBearing b = bearing(p);
     double worst = 0.0;
     for (double eps : {0.2, 0.5, 0.8}) {
