@@ -63,7 +63,7 @@ test: build
 # sanitizer subset of the suite and the evas program under ASan + UBSan, then a
 # short libFuzzer run of every input reader; one clang build in $(SAN_BUILD).
 SAN_BUILD ?= build-fuzz
-FUZZ_SECONDS ?= 12
+FUZZ_SECONDS ?= 8
 sanitize: build
 	JOBS=$(JOBS) ./scripts/sanitize.sh $(SAN_BUILD)
 	JOBS=$(JOBS) EVAS_BIN=$(abspath $(BUILD))/evas ./scripts/fuzz.sh $(FUZZ_SECONDS) $(SAN_BUILD)

@@ -105,15 +105,16 @@ class JournalBearing : public Element {
 
   const JournalBearingParams& params() const { return p_; }
 
+  /// The film is for a static answer only (cavitation mass-conserving: its
+  /// film fraction has no history yet), not for a run.
+  bool static_only() const { return film_ == Film::Reynolds && p_.cavitation == "mass-conserving"; }
+  std::string run_refusal() const override;
+  /// The Reynolds film's grid solver (film = reynolds), else null.
+  const ReynoldsFilm* reynolds_film() const { return reynolds_.get(); }
   /// Film force (hydrodynamic + contact) of a bearing of weight `weight` (1 =
   /// full width) for eccentricity e, its rate ed, relative spin om, with
   /// derivatives when `derivs`. Throws RunError for eps >= eps_max (no
   /// contact) or e >= c. Public for tests.
-  /// The film is for a static answer only (cavitation mass-conserving: its
-  /// film fraction has no history yet), not for a run.
-  bool static_only() const { return film_ == Film::Reynolds && p_.cavitation == "mass-conserving"; }
-  /// The Reynolds film's grid solver (film = reynolds), else null.
-  const ReynoldsFilm* reynolds_film() const { return reynolds_.get(); }
   FilmForce film(double t, const Eigen::Vector2d& e, const Eigen::Vector2d& ed, double om,
                  double weight, bool derivs) const;
   /// Hydrodynamic part only by the chosen film model (and, for the short

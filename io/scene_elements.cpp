@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <filesystem>
 
-#include "elements/journal_bearing.h"
 #include "elements/piston_conrod.h"
 #include "elements/plausibility.h"
 #include "elements/registry.h"
@@ -198,12 +197,8 @@ void SceneReader::read_element(const Node& e, std::size_t i, Model& model) {
     complete_params(*type, values, at);
     check_plausible(*type, values, at, warnings_);
     std::unique_ptr<Element> element = type->make(name, idx, values);
-    if (const auto* jb = dynamic_cast<const JournalBearing*>(element.get());
-        jb && jb->static_only())
-      throw InputError(at +
-                       ": cavitation 'mass-conserving' gives evas bearing's static answer only: "
-                       "in a run its film fraction would need a history (the element's state), "
-                       "which is not built; use cavitation 'swift-stieber'");
+    if (const std::string why = element->run_refusal(); !why.empty())
+      throw InputError(at + ": " + why);
     const SpeedProfile* speed = connect_crank_speed(*element, e, item, model);
     if (type->type == "piston-conrod") {
       check_firing_speed(speed, e, item, values);

@@ -148,6 +148,11 @@ class Element {
   /// Finite-difference D (central differences, step scaled by the motion).
   void derivatives_fd(double t, const MarkerMotion* motion, Mat& D) const;
 
+  /// Why the element, as configured, cannot take part in a run (a model meant
+  /// for a static answer only), or empty when it can. The scene reader refuses
+  /// such an element with this text.
+  virtual std::string run_refusal() const { return {}; }
+
   // --- The crank's speed (an operating point stated once) ---
   // An element that prescribes a crank speed (a piston in mode prescribed, the
   // motor's driver) either gives its own `speed` or follows the crank: the

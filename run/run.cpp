@@ -97,8 +97,7 @@ void MemorySink::row(double t, const double* values) {
 }
 
 SceneRun::SceneRun(const Scene& scene, double t_end)
-    : scene_(scene),
-      t_start_(scene.t_start),
+    : t_start_(scene.t_start),
       t_end_(t_end),
       sys_(std::make_unique<System>(*scene.model)),
       out_(std::make_unique<OutputSet>(scene.output, *sys_, t_start_, t_end_)) {

@@ -54,7 +54,6 @@ class SceneRun {
   Outcome perform(const IntegratorSettings& settings, RowSink& sink);
 
  private:
-  const Scene& scene_;
   double t_start_, t_end_;
   std::unique_ptr<System> sys_;
   std::unique_ptr<OutputSet> out_;

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
+#include <iostream>
 #include <limits>
 #include <sstream>
 
@@ -134,6 +135,18 @@ std::string field(double x) {
   return os.str();
 }
 
+// Draws `script` (run from its folder) into `png`. gnuplot creates the file at
+// `set output`, so a failure can leave an empty or partial PNG: it is removed
+// and the failure said on stderr (no figure passes for one that was drawn).
+void draw(const fs::path& script, const fs::path& png) {
+  std::error_code ec;
+  fs::remove(png, ec);  // a stale figure must not pass for a new one
+  if (run_gnuplot(script) && fs::exists(png, ec) && fs::file_size(png, ec) > 0) return;
+  fs::remove(png, ec);
+  std::cerr << "evas study amplification: warning: gnuplot failed on " << script.string() << ": "
+            << png.filename().string() << " not written\n";
+}
+
 // case<k>/region.csv (a blank line after each Im z row: gnuplot's grid) and
 // its figure: |R| coloured blue (< 1, stable) to red (> 1), mirrored below the
 // real axis.
@@ -179,7 +192,7 @@ void write_region(const fs::path& sub, const AmplificationCase& c, bool plot) {
   std::ofstream g(sub / "region.gp");
   g << gp.str();
   g.close();
-  if (plot && have_gnuplot()) run_gnuplot(sub / "region.gp");
+  if (plot && have_gnuplot()) draw(sub / "region.gp", sub / "region.png");
 }
 
 }  // namespace
@@ -392,7 +405,7 @@ std::vector<AmplificationCase> amplification_study(const std::vector<std::string
     std::ofstream f(dir / "amplification.gp");
     f << s.str();
     f.close();
-    if (have_gnuplot()) run_gnuplot(dir / "amplification.gp");
+    if (have_gnuplot()) draw(dir / "amplification.gp", dir / "amplification.png");
   }
   return cases;
 }

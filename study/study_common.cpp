@@ -102,6 +102,7 @@ Setup prepare(const Options& opt) {
   if (opt.repeats < 1) throw InputError("--repeats must be >= 1");
   Setup s;
   s.src = load_scene_source(opt.scene, opt.params, opt.t_end);
+  s.params = opt.params.size();
   if (opt.start.steady && opt.t_end)
     throw InputError("--steady runs one period from the periodic state: leave out --t-end");
   s.started = start_from(s.src, opt.start, opt.stop, opt.log);
@@ -169,7 +170,11 @@ EmptyOutGuard::~EmptyOutGuard() {
 
 StudyInfo make_info(const Setup& s) {
   StudyInfo i;
+  // the scene's name, marked when --param changed the scene it names (so that
+  // the tables and figures of the changed scene do not carry the plain one's name)
   i.scene_name = s.info.name;
+  if (s.params > 0)
+    i.scene_name += " with " + std::to_string(s.params) + " --param" + (s.params > 1 ? "s" : "");
   i.scene_path = s.src.path;
   i.scene_text = s.src.text;
   i.grid = s.info.grid;

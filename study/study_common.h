@@ -47,6 +47,7 @@ struct Setup {
   fs::path out;
   StartedFrom started;       ///< --initial / --steady (steady_start.h)
   bool created_out = false;  ///< prepare() made the output folder (it was not there)
+  std::size_t params = 0;    ///< how many --param overrides edit the scene
 };
 
 /// Removes the output folder when prepare() made it and it is still empty as

@@ -122,16 +122,23 @@ inline std::vector<pid_t> children_of(pid_t parent) {
   return kids;
 }
 
-// Starts `evas ARGS...` in `cwd` with extra environment entries; stdout and
-// stderr go to `log`.
+// Starts `evas ARGS...` in `cwd` with extra environment entries (an entry
+// NAME=VALUE replaces the inherited NAME); stdout and stderr go to `log`.
 pid_t spawn_evas(const std::vector<std::string>& args, const fs::path& log,
                  const std::vector<std::string>& env = {}, const fs::path& cwd = {}) {
   const std::string exe = evas_binary().string();
   std::vector<std::string> argv_s{exe};
   argv_s.insert(argv_s.end(), args.begin(), args.end());
   std::vector<std::string> env_s;
+  auto given = [&env](const char* entry) {
+    for (const std::string& g : env) {
+      const std::size_t eq = g.find('=');
+      if (eq != std::string::npos && std::strncmp(entry, g.c_str(), eq + 1) == 0) return true;
+    }
+    return false;
+  };
   for (char** e = environ; *e; ++e)
-    if (std::strncmp(*e, "HDF5_USE_FILE_LOCKING=", 22) != 0) env_s.emplace_back(*e);
+    if (std::strncmp(*e, "HDF5_USE_FILE_LOCKING=", 22) != 0 && !given(*e)) env_s.emplace_back(*e);
   env_s.insert(env_s.end(), env.begin(), env.end());
   std::vector<char*> argv, envp;
   for (auto& a : argv_s) argv.push_back(a.data());

@@ -220,3 +220,35 @@ TEST(Amplification, CommandWritesTheAtlas) {
   EXPECT_EQ(bad.code, 1);
   EXPECT_NE(bad.log.find("--h-over-t"), std::string::npos) << bad.log;
 }
+
+// A gnuplot that fails after creating its output (as the real one does at `set
+// output` before an error in the plot) leaves no PNG behind: the figure is
+// removed and the failure said, the tables stay.
+TEST(Amplification, FailedGnuplotLeavesNoFigure) {
+  TempFolder tmp;
+  const fs::path bin = tmp.path() / "bin";
+  fs::create_directories(bin);
+  {
+    std::ofstream g(bin / "gnuplot");
+    g << "#!/bin/sh\n"
+         "for f in \"$@\"; do\n"
+         "  out=$(/bin/sed -n \"s/^set output '\\(.*\\)'.*/\\1/p\" \"$f\")\n"
+         "  [ -n \"$out\" ] && : > \"$out\"\n"
+         "done\n"
+         "exit 1\n";
+  }
+  fs::permissions(bin / "gnuplot", fs::perms::owner_all);
+  const char* path = std::getenv("PATH");
+  const fs::path out = tmp.path() / "amp";
+  const Outcome o = run_evas(
+      {"study", "amplification", "--case", "generalized-alpha rho_inf=0.5", "--h-over-t",
+       "1e-2..1e2/5", "--region", "4", "--region-points", "6", "--out", out.string()},
+      tmp.path() / "amp.log", {"PATH=" + bin.string() + ":" + std::string(path ? path : "")});
+  ASSERT_EQ(o.code, 0) << o.log;
+  EXPECT_TRUE(fs::exists(out / "case0" / "amplification.csv"));
+  EXPECT_TRUE(fs::exists(out / "amplification.gp"));
+  EXPECT_FALSE(fs::exists(out / "amplification.png"));
+  EXPECT_FALSE(fs::exists(out / "case0" / "region.png"));
+  EXPECT_NE(o.log.find("gnuplot failed on"), std::string::npos) << o.log;
+  EXPECT_NE(o.log.find("amplification.png not written"), std::string::npos) << o.log;
+}

@@ -660,6 +660,30 @@ TEST(StudyWorkPrecision, LegendLeavesOutSettingsEveryCurveShares) {
   }
 }
 
+// A study of the scene changed by --param carries a name that says so, in its
+// table, its file and its figure (the plain scene's name alone would pass the
+// changed scene's answer for the plain one's).
+TEST(StudyWorkPrecision, ParamsMarkTheSceneName) {
+  TempDir dir("wp_params");
+  const std::string scene = dir.write("osc.yaml", oscillator_scene(0.05, 5e-4));
+  Options o = quiet_options(scene, dir.path() / "out");
+  o.reference = "ida rtol=1e-8 atol=1e-12";
+  o.params = {"spring.damping=[3, 3, 3]"};
+  o.plot = true;
+  const auto res = work_precision(o, {{"ida rtol=1e-4", ""}});
+  EXPECT_EQ(res.info.scene_name, "oscillator with 1 --param");
+  std::ifstream in(dir.path() / "out" / "study.md");
+  const std::string md((std::istreambuf_iterator<char>(in)), {});
+  EXPECT_EQ(md.rfind("# Work-precision study: oscillator with 1 --param\n", 0), 0u) << md;
+  EXPECT_NE(md.find("with spring.damping=[3, 3, 3]"), std::string::npos) << md;
+  std::ifstream g(dir.path() / "out" / "study.gp");
+  const std::string gp((std::istreambuf_iterator<char>(g)), {});
+  EXPECT_NE(gp.find("work-precision: oscillator with 1 --param"), std::string::npos) << gp;
+  o.params.clear();
+  o.out_dir = (dir.path() / "plain").string();
+  EXPECT_EQ(work_precision(o, {{"ida rtol=1e-4", ""}}).info.scene_name, "oscillator");
+}
+
 TEST(StudyWorkPrecision, BadInputIsReportedBeforeAnyRun) {
   TempDir dir("wp_bad");
   const std::string scene = dir.write("osc.yaml", oscillator_scene(0.01, 1e-3));
