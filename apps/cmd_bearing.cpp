@@ -8,6 +8,7 @@
 #include <memory>
 #include <sstream>
 
+#include "apps/bearing_orbit_command.h"
 #include "apps/commands.h"
 #include "elements/bearing_static.h"
 #include "elements/registry.h"
@@ -78,7 +79,8 @@ void print_table(const BearingOperatingPoint& r, const std::string& film) {
 int cmd_bearing(const std::vector<std::string>& args) {
   po::options_description opts(
       "usage: evas bearing --radius R --width B --clearance C --viscosity ETA --speed RPM\n"
-      "                    (--load W | --eccentricity EPS) [--film short|finite|reynolds]\n"
+      "                    (--load W | --eccentricity EPS | --load-cycle FILE [--out DIR])\n"
+      "                    [--film short|finite|reynolds]\n"
       "                    [--cavitation swift-stieber|none|mass-conserving]\n"
       "                    [--grid-phi N] [--grid-axial N]\n"
       "                    [--feed none|axial-grooves|oil-holes|circumferential-groove]\n"
@@ -93,6 +95,11 @@ int cmd_bearing(const std::vector<std::string>& args) {
       "load. The film is the journal-bearing element's (the same code as at run time;\n"
       "parameters named as the element's). Grooves (film reynolds) sit at angles from the\n"
       "load, in the direction of rotation. docs/elements-journal-bearing.md, \"Film models\".\n\n"
+      "With --load-cycle FILE (CSV: angle_deg,fx,fy; the load on the journal over one period\n"
+      "of the crank angle, bearing frame) the journal's orbit instead: the journal massless,\n"
+      "the film's force balancing the load at every instant (Booker's mobility idea with the\n"
+      "element's film), cycles repeated until the orbit settles; DIR/orbit.csv, orbit.png.\n"
+      "docs/elements-journal-bearing.md, \"Orbit under a load cycle\".\n\n"
       "options");
   double radius = 0, width = 0, clearance = 0, viscosity = 0, speed = 0;
   std::string film = "short", cavitation = "swift-stieber";
@@ -131,13 +138,26 @@ int cmd_bearing(const std::vector<std::string>& args) {
       "feed-width", po::value<double>(&feed_width)->default_value(feed_width),
       "circumferential groove: its width [m]")(
       "supply-pressure", po::value<double>(&supply_pressure)->default_value(supply_pressure),
-      "oil pressure in the grooves [Pa]")("json", "print JSON instead of the table");
+      "oil pressure in the grooves [Pa]")("json", "print JSON instead of the table")(
+      "load-cycle", po::value<std::string>(), "orbit under this load cycle (CSV angle_deg,fx,fy)")(
+      "out", po::value<std::string>()->default_value("out/bearing-orbit"),
+      "load cycle: folder for orbit.csv and orbit.png")(
+      "cycles", po::value<int>()->default_value(OrbitOptions{}.max_cycles),
+      "load cycle: the most cycles run (at least 2)")(
+      "samples", po::value<int>()->default_value(OrbitOptions{}.samples),
+      "load cycle: orbit points per cycle")(
+      "settle-tol", po::value<double>()->default_value(OrbitOptions{}.settle_tol),
+      "load cycle: settled when no orbit point moves more than this x c over a cycle")(
+      "no-plot", "load cycle: do not run gnuplot (orbit.gp is still written)");
   po::variables_map vm;
   if (parse_args(args, opts, {}, vm)) return 0;
   for (const char* o : {"radius", "width", "clearance", "viscosity", "speed"})
     if (!vm.count(o)) throw InputError(std::string("missing --") + o);
-  if (vm.count("load") == vm.count("eccentricity"))
-    throw InputError("give exactly one of --load and --eccentricity");
+  if (vm.count("load") + vm.count("eccentricity") + vm.count("load-cycle") != 1)
+    throw InputError("give exactly one of --load, --eccentricity and --load-cycle");
+  for (const char* o : {"out", "cycles", "samples", "settle-tol", "no-plot"})
+    if (!vm[o].defaulted() && vm.count(o) && !vm.count("load-cycle"))
+      throw InputError(std::string("--") + o + " goes with --load-cycle");
   if (!(speed > 0.0)) throw InputError("--speed " + num(speed) + ": must be above 0 rpm");
   const ElementType& t = element_type("journal-bearing");
   ParamValues v;
@@ -174,6 +194,17 @@ int cmd_bearing(const std::vector<std::string>& args) {
   const std::unique_ptr<Element> el = t.make("bearing", {0, 1}, v);
   const auto& b = dynamic_cast<const JournalBearing&>(*el);
   const double om = speed * 2.0 * M_PI / 60.0;
+  if (vm.count("load-cycle")) {
+    OrbitCommand cmd;
+    cmd.load_file = vm["load-cycle"].as<std::string>();
+    cmd.out_dir = vm["out"].as<std::string>();
+    cmd.options.max_cycles = vm["cycles"].as<int>();
+    cmd.options.samples = vm["samples"].as<int>();
+    cmd.options.settle_tol = vm["settle-tol"].as<double>();
+    cmd.json = vm.count("json") > 0;
+    cmd.plot = vm.count("no-plot") == 0;
+    return bearing_orbit_command(b, om, film, cmd);
+  }
   const BearingOperatingPoint r =
       vm.count("load") ? bearing_at_load(b, om, vm["load"].as<double>())
                        : bearing_at_eccentricity(b, om, vm["eccentricity"].as<double>());

@@ -53,7 +53,7 @@ default_tests="test_scene test_scene_elements test_marker_fit test_body_file tes
   test_arkode:-Arkode.RunsThePapersEngine test_amplification test_instability_named
   test_bathe:-Bathe.RunsThePapersEngine test_film_models:-FilmModels.ReynoldsGridConvergence
   test_film_feed:-FilmFeed.TwoAxialGroovesMatchLundThomsen:FilmFeed.BearingCommandTakesTheFeed
-  test_film_cavitation:-FilmCavitation.MassConservingMatchesRaimondiBoyd"
+  test_film_cavitation:-FilmCavitation.MassConservingMatchesRaimondiBoyd test_bearing_orbit"
 tests=""
 for t in ${SANITIZE_TESTS:-$default_tests}; do
   [ -f "tests/${t%%:*}.cpp" ] && tests="$tests $t"
