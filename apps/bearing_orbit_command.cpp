@@ -79,11 +79,8 @@ int bearing_orbit_command(const JournalBearing& b, double om, const std::string&
   }
   bool drawn = false;
   if (cmd.plot && have_gnuplot()) {
-    std::error_code ec;
-    fs::remove(dir / "orbit.png", ec);
-    drawn = run_gnuplot(dir / "orbit.gp") && fs::exists(dir / "orbit.png");
+    drawn = draw_figure(dir / "orbit.gp", dir / "orbit.png");
     if (!drawn) {
-      fs::remove(dir / "orbit.png", ec);
       std::cerr << "evas bearing: warning: gnuplot failed on " << (dir / "orbit.gp").string()
                 << ": orbit.png not written\n";
     }

@@ -28,6 +28,16 @@ bool run_gnuplot(const std::vector<std::filesystem::path>& scripts) {
   return std::system((cmd + " >/dev/null 2>&1").c_str()) == 0;
 }
 
+bool draw_figure(const std::filesystem::path& script, const std::filesystem::path& figure) {
+  std::error_code ec;
+  std::filesystem::remove(figure, ec);  // a stale figure must not pass for a new one
+  if (run_gnuplot(script) && std::filesystem::exists(figure, ec) &&
+      std::filesystem::file_size(figure, ec) > 0 && !ec)
+    return true;
+  std::filesystem::remove(figure, ec);
+  return false;
+}
+
 std::string gp_quote(const std::string& s) {
   std::string out = "'";
   for (char c : s) {

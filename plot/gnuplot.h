@@ -16,6 +16,11 @@ bool have_gnuplot();
 /// Runs gnuplot on `script` in the script's folder (the script names its output
 /// file without a folder); false on failure.
 bool run_gnuplot(const std::filesystem::path& script);
+/// Draws `script` into `figure` (the file the script's `set output` names):
+/// removes a stale figure first, and a partial one when gnuplot fails (gnuplot
+/// creates the file at `set output`, before an error in a plot), so that a
+/// figure on disk is always one that was drawn. True when it was.
+bool draw_figure(const std::filesystem::path& script, const std::filesystem::path& figure);
 /// Several scripts of one folder in one gnuplot process, in order (gnuplot's
 /// start is most of the time of a small figure). False when gnuplot failed.
 bool run_gnuplot(const std::vector<std::filesystem::path>& scripts);

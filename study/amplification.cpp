@@ -135,14 +135,10 @@ std::string field(double x) {
   return os.str();
 }
 
-// Draws `script` (run from its folder) into `png`. gnuplot creates the file at
-// `set output`, so a failure can leave an empty or partial PNG: it is removed
-// and the failure said on stderr (no figure passes for one that was drawn).
+// Draws `script` (run from its folder) into `png`; a failure is said on stderr
+// and leaves no figure (draw_figure).
 void draw(const fs::path& script, const fs::path& png) {
-  std::error_code ec;
-  fs::remove(png, ec);  // a stale figure must not pass for a new one
-  if (run_gnuplot(script) && fs::exists(png, ec) && fs::file_size(png, ec) > 0) return;
-  fs::remove(png, ec);
+  if (draw_figure(script, png)) return;
   std::cerr << "evas study amplification: warning: gnuplot failed on " << script.string() << ": "
             << png.filename().string() << " not written\n";
 }

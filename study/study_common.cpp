@@ -571,9 +571,7 @@ bool plot(const Options& opt, const fs::path& script, const std::string& text, S
   write_file_atomic(script, text);
   info.files.push_back(script.string());
   if (!opt.plot || !have_gnuplot()) return false;
-  std::error_code ec;
-  fs::remove(png, ec);  // a stale figure must not pass for a new one
-  if (!run_gnuplot(script) || !fs::exists(png)) {
+  if (!draw_figure(script, png)) {
     say(opt, "evas study: gnuplot failed on " + script.string());
     return false;
   }
