@@ -26,7 +26,7 @@ std::string num(double x) {
 }
 
 // The last cycle's points, angle_deg the crank angle in the load cycle's own
-// range (first row's angle to one period later), time_s from the orbit's start.
+// range (first row's angle to one period later), time_s = crank angle / speed.
 std::string orbit_csv(const BearingOrbit& o, double period_deg) {
   std::ostringstream os;
   os << "angle_deg,time_s,x_m,y_m,eccentricity,min_film_m,max_pressure_Pa,load_x_N,load_y_N\n";
