@@ -7,6 +7,7 @@
 #include <iostream>
 #include <sstream>
 
+#include "apps/finite_number.h"
 #include "io/load_cycle.h"
 #include "model/types.h"
 #include "plot/gnuplot.h"
@@ -18,11 +19,8 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::string num(double x) {
-  if (!std::isfinite(x)) throw RunError("evas bearing: an orbit value is not finite");
-  std::ostringstream os;
-  os << std::setprecision(10) << x;
-  return os.str();
+std::string orbit_number(double x) {
+  return finite_number(x, "evas bearing: an orbit value is not finite");
 }
 
 // The last cycle's points, angle_deg the crank angle in the load cycle's own
@@ -32,9 +30,11 @@ std::string orbit_csv(const BearingOrbit& o, double period_deg) {
   os << "angle_deg,time_s,x_m,y_m,eccentricity,min_film_m,max_pressure_Pa,load_x_N,load_y_N\n";
   const double shift = (o.cycles - 1) * period_deg;
   for (const OrbitPoint& p : o.cycle)
-    os << num(p.angle_deg - shift) << "," << num(p.time) << "," << num(p.e.x()) << ","
-       << num(p.e.y()) << "," << num(p.eccentricity) << "," << num(p.min_film) << ","
-       << num(p.max_pressure) << "," << num(p.load.x()) << "," << num(p.load.y()) << "\n";
+    os << orbit_number(p.angle_deg - shift) << "," << orbit_number(p.time) << ","
+       << orbit_number(p.e.x()) << "," << orbit_number(p.e.y()) << ","
+       << orbit_number(p.eccentricity) << "," << orbit_number(p.min_film) << ","
+       << orbit_number(p.max_pressure) << "," << orbit_number(p.load.x()) << ","
+       << orbit_number(p.load.y()) << "\n";
   return os.str();
 }
 
@@ -97,12 +97,12 @@ int bearing_orbit_command(const JournalBearing& b, double om, const std::string&
   if (cmd.json) {
     std::cout << "{\n  \"film\": \"" << film << "\",\n  \"cycles\": " << o.cycles
               << ",\n  \"settled\": " << (o.settled ? "true" : "false")
-              << ",\n  \"change\": " << num(o.change)
-              << ",\n  \"max_eccentricity\": " << num(thin->eccentricity)
-              << ",\n  \"min_film\": " << num(thin->min_film)
-              << ",\n  \"min_film_angle_deg\": " << num(cycle_angle(thin->angle_deg))
-              << ",\n  \"max_pressure\": " << num(peak->max_pressure)
-              << ",\n  \"max_pressure_angle_deg\": " << num(cycle_angle(peak->angle_deg))
+              << ",\n  \"change\": " << orbit_number(o.change)
+              << ",\n  \"max_eccentricity\": " << orbit_number(thin->eccentricity)
+              << ",\n  \"min_film\": " << orbit_number(thin->min_film)
+              << ",\n  \"min_film_angle_deg\": " << orbit_number(cycle_angle(thin->angle_deg))
+              << ",\n  \"max_pressure\": " << orbit_number(peak->max_pressure)
+              << ",\n  \"max_pressure_angle_deg\": " << orbit_number(cycle_angle(peak->angle_deg))
               << ",\n  \"steps\": " << o.steps << ",\n  \"rejected_steps\": " << o.rejected
               << ",\n  \"film_solves\": " << o.film_solves << "\n}\n";
   } else {
@@ -111,16 +111,16 @@ int bearing_orbit_command(const JournalBearing& b, double om, const std::string&
                 << "  " << unit << "\n";
     };
     std::cout << "journal orbit, film '" << film << "', load cycle " << cmd.load_file << " ("
-              << num(period) << " deg):\n";
+              << orbit_number(period) << " deg):\n";
     row("cycles run", std::to_string(o.cycles), "");
     row("settled", o.settled ? "yes" : "no", "");
-    row("orbit moved over the last cycle", num(o.change), "x c");
-    row("largest eccentricity ratio", num(thin->eccentricity), "-");
-    row("minimum film", num(thin->min_film), "m");
-    row("  at crank angle", num(cycle_angle(thin->angle_deg)), "deg");
-    row("largest peak pressure", num(peak->max_pressure),
+    row("orbit moved over the last cycle", orbit_number(o.change), "x c");
+    row("largest eccentricity ratio", orbit_number(thin->eccentricity), "-");
+    row("minimum film", orbit_number(thin->min_film), "m");
+    row("  at crank angle", orbit_number(cycle_angle(thin->angle_deg)), "deg");
+    row("largest peak pressure", orbit_number(peak->max_pressure),
         film == "finite" ? "Pa (estimate)" : "Pa");
-    row("  at crank angle", num(cycle_angle(peak->angle_deg)), "deg");
+    row("  at crank angle", orbit_number(cycle_angle(peak->angle_deg)), "deg");
     row("steps (rejected)", std::to_string(o.steps) + " (" + std::to_string(o.rejected) + ")", "");
     row("film solves", std::to_string(o.film_solves), "");
     std::cout << "  orbit: " << (dir / "orbit.csv").string() << "\n";

@@ -10,6 +10,7 @@
 
 #include "apps/bearing_orbit_command.h"
 #include "apps/commands.h"
+#include "apps/finite_number.h"
 #include "elements/bearing_static.h"
 #include "elements/registry.h"
 #include "model/types.h"
@@ -18,12 +19,7 @@ namespace evas::cli {
 
 namespace {
 
-std::string num(double x) {
-  if (!std::isfinite(x)) throw RunError("evas bearing: a result is not finite");
-  std::ostringstream os;
-  os << std::setprecision(10) << x;
-  return os.str();
-}
+std::string num(double x) { return finite_number(x, "evas bearing: a result is not finite"); }
 
 std::string matrix_json(const Eigen::Matrix2d& m) {
   return "[[" + num(m(0, 0)) + ", " + num(m(0, 1)) + "], [" + num(m(1, 0)) + ", " + num(m(1, 1)) +

@@ -156,17 +156,32 @@ BearingOrbit bearing_orbit(const JournalBearing& b, double om, const LoadCycle& 
 
   BearingOrbit out;
   V2 e = start_position(b, om, load.at(a0)), guess = V2::Zero();
-  auto point = [&](double t, const V2& pos, const V2& vel) {
+  // the points' velocities beside them: the peak pressure is computed for the
+  // reported cycle's points only (a Reynolds film's solve each)
+  std::vector<V2> vel, previous_vel;
+  auto point = [&](double t, const V2& pos, const V2& ed) {
     OrbitPoint p;
     p.time = t;
     p.angle_deg = t * deg_per_s;
     p.e = pos;
-    p.ed = vel;
     p.load = load.at(p.angle_deg);
     p.eccentricity = pos.norm() / c;
     p.min_film = c - pos.norm();
-    p.max_pressure = b.peak_pressure(pos, vel, om);
+    vel.push_back(ed);
     return p;
+  };
+  auto finish = [&](std::vector<OrbitPoint>&& pts, const std::vector<V2>& ed) {
+    for (std::size_t k = 0; k < pts.size(); ++k) {
+      try {
+        pts[k].max_pressure = b.peak_pressure(pts[k].e, ed[k], om);
+      } catch (const RunError& err) {
+        pts.resize(k);
+        if (out.failure.empty()) out.failure = err.what();
+        break;
+      }
+    }
+    out.cycle = std::move(pts);
+    return out;
   };
   // Bogacki & Shampine's 3(2) pair (Appl. Math. Lett. 2, 1989), first same as
   // last; the step from the local error of e against tolerance x c.
@@ -175,6 +190,7 @@ BearingOrbit bearing_orbit(const JournalBearing& b, double om, const LoadCycle& 
   std::vector<OrbitPoint> previous, pts;
   try {
     for (int cycle = 1; cycle <= opt.max_cycles; ++cycle) {
+      vel.clear();
       pts.assign(1, point(t, e, k1));
       for (int s = 1; s <= opt.samples; ++s) {
         const double t_end = t0 + (cycle - 1 + static_cast<double>(s) / opt.samples) * T;
@@ -226,21 +242,19 @@ BearingOrbit bearing_orbit(const JournalBearing& b, double om, const LoadCycle& 
         out.change = move;
         if (move < opt.settle_tol) {
           out.settled = true;
-          out.cycle = std::move(pts);
-          return out;
+          return finish(std::move(pts), vel);
         }
       }
       previous = std::move(pts);
+      previous_vel = std::move(vel);
     }
   } catch (const RunError& err) {
     // the points of the cycle the journal was on when the film gave out
     out.failure = err.what();
     out.cycles += 1;
-    out.cycle = std::move(pts);
-    return out;
+    return finish(std::move(pts), vel);
   }
-  out.cycle = std::move(previous);
-  return out;
+  return finish(std::move(previous), previous_vel);
 }
 
 }  // namespace evas

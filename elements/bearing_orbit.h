@@ -44,8 +44,7 @@ struct OrbitOptions {
 
 struct OrbitPoint {
   double angle_deg = 0.0, time = 0.0;
-  Eigen::Vector2d e = Eigen::Vector2d::Zero();   ///< journal centre from the bearing's [m]
-  Eigen::Vector2d ed = Eigen::Vector2d::Zero();  ///< its velocity [m/s]
+  Eigen::Vector2d e = Eigen::Vector2d::Zero();  ///< journal centre from the bearing's [m]
   Eigen::Vector2d load = Eigen::Vector2d::Zero();
   double eccentricity = 0.0;  ///< |e| / c
   double min_film = 0.0;      ///< c - |e| [m]

@@ -92,7 +92,7 @@ FilmIntegrals film_integrals(const Somm& lo, const Somm& hi, double dpsi, double
   return I;
 }
 
-std::string fmt(double x) {
+std::string brief_number(double x) {
   std::ostringstream os;
   os.precision(6);
   os << x;
@@ -141,8 +141,9 @@ JournalBearing::JournalBearing(std::string name, std::vector<int> markers,
     const double bd = p_.width / (2.0 * p_.radius);
     if (bd < kFiniteFilmMinWidthRatio || bd > kFiniteFilmMaxWidthRatio)
       throw InputError(where + ": film 'finite' (Butenschoen's fit) holds for width ratios B/D " +
-                       fmt(kFiniteFilmMinWidthRatio) + " to " + fmt(kFiniteFilmMaxWidthRatio) +
-                       "; this bearing's is " + fmt(bd) + " (use film 'reynolds')");
+                       brief_number(kFiniteFilmMinWidthRatio) + " to " +
+                       brief_number(kFiniteFilmMaxWidthRatio) + "; this bearing's is " +
+                       brief_number(bd) + " (use film 'reynolds')");
   } else if (p_.film == "reynolds") {
     film_ = Film::Reynolds;
     try {
@@ -307,16 +308,17 @@ void JournalBearing::fail_if_closed(double t, double e) const {
   const double eps = e / p_.clearance;
   if (!(eps < 1.0))
     throw RangeError("journal bearing '" + name() + "': film closed, eccentricity ratio " +
-                     fmt(eps) + " >= 1 at t = " + fmt(t) + " s (journal centre " + fmt(e) +
-                     " m off the bearing centre, radial clearance " + fmt(p_.clearance) +
+                     brief_number(eps) + " >= 1 at t = " + brief_number(t) + " s (journal centre " +
+                     brief_number(e) + " m off the bearing centre, radial clearance " +
+                     brief_number(p_.clearance) +
                      " m). At the start this means the two markers do not share a centre: "
                      "give set markers 'centre: fit' (the least-squares cylinder through the "
                      "set's nodes) or a 'centre' on the bearing axis (a surface set's node "
                      "centroid lies off the axis by the mesh's irregularity)");
   if (eps > p_.eps_max && !(p_.contact_stiffness > 0.0))
     throw RangeError(
-        "journal bearing '" + name() + "': eccentricity ratio " + fmt(eps) +
-        " >= eps_max = " + fmt(p_.eps_max) + " at t = " + fmt(t) +
+        "journal bearing '" + name() + "': eccentricity ratio " + brief_number(eps) +
+        " >= eps_max = " + brief_number(p_.eps_max) + " at t = " + brief_number(t) +
         " s (film nearly closed; set contact_stiffness > 0 to model asperity contact)");
 }
 
@@ -612,7 +614,7 @@ void JournalBearing::channel_values(double t, const MarkerMotion* m, double* out
 }
 
 std::string JournalBearing::run_refusal() const {
-  if (!static_only()) return {};
+  if (film_ != Film::Reynolds || p_.cavitation != "mass-conserving") return {};
   return "cavitation 'mass-conserving' gives evas bearing's static answer only: in a run its "
          "film fraction would need a history (the element's state), which is not built; use "
          "cavitation 'swift-stieber'";

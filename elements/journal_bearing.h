@@ -105,9 +105,8 @@ class JournalBearing : public Element {
 
   const JournalBearingParams& params() const { return p_; }
 
-  /// The film is for a static answer only (cavitation mass-conserving: its
-  /// film fraction has no history yet), not for a run.
-  bool static_only() const { return film_ == Film::Reynolds && p_.cavitation == "mass-conserving"; }
+  /// Why the film cannot run (cavitation mass-conserving: a static answer only,
+  /// its film fraction has no history yet); empty when it can.
   std::string run_refusal() const override;
   /// The Reynolds film's grid solver (film = reynolds), else null.
   const ReynoldsFilm* reynolds_film() const { return reynolds_.get(); }
