@@ -22,7 +22,7 @@ namespace evas::cli {
 
 namespace {
 
-std::string num(double x) {
+std::string json_number(double x) {
   std::ostringstream os;
   os << std::setprecision(16) << x;
   return std::isfinite(x) ? os.str() : "null";
@@ -42,26 +42,27 @@ void write_summary(const std::filesystem::path& dir, const problems::LibraryProb
   f << "{\n  \"problem\": " << json_string(lp.name)
     << ",\n  \"integrator\": " << json_string(s.name)
     << ",\n  \"formulation\": " << json_string(formulation_used(lp, s))
-    << ",\n  \"rtol\": " << num(s.rtol) << ",\n  \"atol\": " << num(s.atol)
-    << ",\n  \"t_end\": " << num(lp.t_end)
+    << ",\n  \"rtol\": " << json_number(s.rtol) << ",\n  \"atol\": " << json_number(s.atol)
+    << ",\n  \"t_end\": " << json_number(lp.t_end)
     << ",\n  \"status\": " << json_string(ok ? "completed" : "failed: " + run.failure);
   if (ok && lp.implicit()) {
-    f << ",\n  \"mescd\": " << num(run.score.mescd) << ",\n  \"scd\": " << num(run.score.scd)
-      << ",\n  \"y\": [";
-    for (int i = 0; i < run.y.size(); ++i) f << (i ? ", " : "") << num(run.y(i));
+    f << ",\n  \"mescd\": " << json_number(run.score.mescd)
+      << ",\n  \"scd\": " << json_number(run.score.scd) << ",\n  \"y\": [";
+    for (int i = 0; i < run.y.size(); ++i) f << (i ? ", " : "") << json_number(run.y(i));
     f << "]";
   } else if (ok) {
     const int n = static_cast<int>(run.q.size());
-    f << ",\n  \"mescd\": " << num(run.score.mescd) << ",\n  \"scd\": " << num(run.score.scd)
-      << ",\n  \"mescd_lambda\": " << num(run.score.mescd_lambda) << ",\n  \"q\": [";
-    for (int i = 0; i < n; ++i) f << (i ? ", " : "") << num(run.q(i));
+    f << ",\n  \"mescd\": " << json_number(run.score.mescd)
+      << ",\n  \"scd\": " << json_number(run.score.scd)
+      << ",\n  \"mescd_lambda\": " << json_number(run.score.mescd_lambda) << ",\n  \"q\": [";
+    for (int i = 0; i < n; ++i) f << (i ? ", " : "") << json_number(run.q(i));
     f << "],\n  \"v\": [";
-    for (int i = 0; i < n; ++i) f << (i ? ", " : "") << num(run.v(i));
+    for (int i = 0; i < n; ++i) f << (i ? ", " : "") << json_number(run.v(i));
     f << "]";
   }
-  f << ",\n  \"wall_seconds\": " << num(run.wall) << ",\n  \"stats\": {\n"
+  f << ",\n  \"wall_seconds\": " << json_number(run.wall) << ",\n  \"stats\": {\n"
     << stats_json_members(run.stats, "    ") << "\n  }";
-  if (ok && !lp.implicit()) f << ",\n  \"max_constraint_end\": " << num(run.g_end);
+  if (ok && !lp.implicit()) f << ",\n  \"max_constraint_end\": " << json_number(run.g_end);
   f << "\n}\n";
   if (!f) throw InputError((dir / "summary.json").string() + ": writing failed");
   std::cout << "  summary: " << (dir / "summary.json").string() << "\n";

@@ -22,12 +22,12 @@ struct Condition {
   std::string key, value;
 };
 
-struct Entry {
+struct SettingEntry {
   SettingInfo info;
   std::function<void(IntegratorSettings&, const std::string&)> set;
   std::function<std::string(const IntegratorSettings&)> get;
   Condition when;
-  Entry& only_with(const std::string& key, const std::string& value) {
+  SettingEntry& only_with(const std::string& key, const std::string& value) {
     when = {key, value};
     return *this;
   }
@@ -76,9 +76,9 @@ std::string join(const std::vector<std::string>& v) {
 }
 
 // A number in (lo, hi] (open_lo) or [lo, hi].
-Entry number(const std::string& key, const std::string& doc, double IntegratorSettings::*field,
-             double lo, double hi, bool open_lo) {
-  Entry e{{key, "number", "", doc}, nullptr, nullptr, {}};
+SettingEntry number(const std::string& key, const std::string& doc,
+                    double IntegratorSettings::*field, double lo, double hi, bool open_lo) {
+  SettingEntry e{{key, "number", "", doc}, nullptr, nullptr, {}};
   e.set = [=](IntegratorSettings& s, const std::string& v) {
     const double x = parse_number(key, v);
     if (x < lo || x > hi || (open_lo && x == lo)) {
@@ -93,9 +93,9 @@ Entry number(const std::string& key, const std::string& doc, double IntegratorSe
 }
 
 template <class Int>
-Entry integer(const std::string& key, const std::string& doc, Int IntegratorSettings::*field,
-              long lo, long hi) {
-  Entry e{{key, "integer", "", doc}, nullptr, nullptr, {}};
+SettingEntry integer(const std::string& key, const std::string& doc, Int IntegratorSettings::*field,
+                     long lo, long hi) {
+  SettingEntry e{{key, "integer", "", doc}, nullptr, nullptr, {}};
   e.set = [=](IntegratorSettings& s, const std::string& v) {
     const long x = parse_integer(key, v);
     if (x < lo || x > hi)
@@ -107,9 +107,10 @@ Entry integer(const std::string& key, const std::string& doc, Int IntegratorSett
   return e;
 }
 
-Entry choice(const std::string& key, const std::string& doc, std::string IntegratorSettings::*field,
-             std::function<std::vector<std::string>()> choices) {
-  Entry e{{key, "choice", "", doc}, nullptr, nullptr, {}};
+SettingEntry choice(const std::string& key, const std::string& doc,
+                    std::string IntegratorSettings::*field,
+                    std::function<std::vector<std::string>()> choices) {
+  SettingEntry e{{key, "choice", "", doc}, nullptr, nullptr, {}};
   e.set = [=](IntegratorSettings& s, const std::string& v) {
     const auto c = choices();
     for (const auto& x : c)
@@ -126,9 +127,9 @@ Entry choice(const std::string& key, const std::string& doc, std::string Integra
 
 // A choice kept as an enum: its values in their text form.
 template <class E>
-Entry enum_choice(const std::string& key, const std::string& doc, E IntegratorSettings::*field,
-                  std::vector<E> values) {
-  Entry e{{key, "choice", "", doc}, nullptr, nullptr, {}};
+SettingEntry enum_choice(const std::string& key, const std::string& doc,
+                         E IntegratorSettings::*field, std::vector<E> values) {
+  SettingEntry e{{key, "choice", "", doc}, nullptr, nullptr, {}};
   std::vector<std::string> names;
   for (E v : values) names.push_back(to_text(v));
   e.set = [=](IntegratorSettings& s, const std::string& v) {
@@ -144,10 +145,10 @@ Entry enum_choice(const std::string& key, const std::string& doc, E IntegratorSe
   return e;
 }
 
-const std::vector<Entry>& table() {
+const std::vector<SettingEntry>& table() {
   using S = IntegratorSettings;
   const double inf = std::numeric_limits<double>::max();
-  static const std::vector<Entry> t = {
+  static const std::vector<SettingEntry> t = {
       choice("name", "the integrator", &S::name, [] { return integrator_names(); }),
       number("rtol", "relative tolerance (fixed-step methods: with step_control=adaptive)",
              &S::rtol, 0.0, 1.0, true),
@@ -193,7 +194,7 @@ const std::vector<Entry>& table() {
                return std::vector<std::string>{"bdf", "adams"};
              }),
       [] {  // (the choices, 37 names, are listed by an unknown one's error, not here)
-        Entry e = choice("table", "", &S::table, [] {
+        SettingEntry e = choice("table", "", &S::table, [] {
           std::vector<std::string> t = arkode_implicit_tables();
           for (const auto& x : arkode_explicit_tables()) t.push_back(x);
           return t;
@@ -251,7 +252,7 @@ const std::vector<Entry>& table() {
   return t;
 }
 
-const Entry* find_builtin(const std::string& key) {
+const SettingEntry* find_builtin(const std::string& key) {
   for (const auto& e : table())
     if (e.info.key == key) return &e;
   return nullptr;
@@ -278,8 +279,8 @@ bool find_declared(const std::string& key, const std::string& integrator, Declar
   throw InputError("'" + key + "' is not an integrator setting (known: " + join(keys) + ")");
 }
 
-const Entry& find(const std::string& key) {
-  if (const Entry* e = find_builtin(key)) return *e;
+const SettingEntry& find(const std::string& key) {
+  if (const SettingEntry* e = find_builtin(key)) return *e;
   unknown_key(key);
 }
 
@@ -297,7 +298,7 @@ std::vector<std::string> builtin_readers(const std::string& key) {
 
 // "all", or the methods that read the setting, and the condition under which
 // they do ("ida: linear_solver=second-order").
-std::string applies_text(const Entry& e) {
+std::string applies_text(const SettingEntry& e) {
   const std::vector<std::string> readers = builtin_readers(e.info.key);
   std::string out = readers.size() == builtin_integrator_names().size() ? "all" : join(readers);
   if (!e.when.key.empty()) out += ": " + e.when.key + "=" + e.when.value;
@@ -337,7 +338,7 @@ std::string setting_unread_reason(const IntegratorSettings& s, const std::string
     if (declarer == s.name || !integrator_capabilities(s.name).declared) return "";
     return s.name + " does not read it (it is " + declarer + "'s own setting)";
   }
-  const Entry& e = find(key);
+  const SettingEntry& e = find(key);
   const IntegratorCapabilities caps = integrator_capabilities(s.name);
   if (!caps.declared) return "";
   const std::string cond = e.when.key.empty() ? "" : e.when.key + "=" + e.when.value;
@@ -382,7 +383,7 @@ const char* to_text(Iteration i) {
 
 void set_integrator_setting(IntegratorSettings& s, const std::string& key,
                             const std::string& value) {
-  if (const Entry* e = find_builtin(key)) {
+  if (const SettingEntry* e = find_builtin(key)) {
     e->set(s, value);
     return;
   }
@@ -397,7 +398,7 @@ void set_integrator_setting(IntegratorSettings& s, const std::string& key,
 }
 
 std::string get_integrator_setting(const IntegratorSettings& s, const std::string& key) {
-  if (const Entry* e = find_builtin(key)) return e->get(s);
+  if (const SettingEntry* e = find_builtin(key)) return e->get(s);
   DeclaredSetting d;
   if (!find_declared(key, s.name, d)) unknown_key(key);
   return number_text(own_setting(s, key));

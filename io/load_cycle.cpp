@@ -13,14 +13,14 @@ namespace {
 
 constexpr std::uintmax_t kMaxBytes = 64u << 20;  // 64 MiB: far beyond any cycle
 
-std::string trim(const std::string& s) {
+std::string trimmed(const std::string& s) {
   const auto a = s.find_first_not_of(" \t\r");
   if (a == std::string::npos) return {};
   return s.substr(a, s.find_last_not_of(" \t\r") - a + 1);
 }
 
 bool number(const std::string& text, double& v) {
-  const std::string s = trim(text);
+  const std::string s = trimmed(text);
   if (s.empty()) return false;
   std::size_t used = 0;
   try {
@@ -50,7 +50,7 @@ LoadCycle read_load_cycle(const std::string& path) {
   for (std::string line; std::getline(in, line);) {
     ++no;
     const std::string at = path + ":" + std::to_string(no);
-    const std::string t = trim(line);
+    const std::string t = trimmed(line);
     if (t.empty() || t[0] == '#') continue;
     std::string fields[3];
     int n = 0;
@@ -66,8 +66,8 @@ LoadCycle read_load_cycle(const std::string& path) {
       from = comma + 1;
     }
     if (!header) {
-      if (n != 3 || trim(fields[0]) != "angle_deg" || trim(fields[1]) != "fx" ||
-          trim(fields[2]) != "fy")
+      if (n != 3 || trimmed(fields[0]) != "angle_deg" || trimmed(fields[1]) != "fx" ||
+          trimmed(fields[2]) != "fy")
         throw InputError(at +
                          ": the header must read 'angle_deg,fx,fy' (crank angle in deg, "
                          "the load on the journal in N), got '" +
@@ -81,7 +81,7 @@ LoadCycle read_load_cycle(const std::string& path) {
                        (n > 3 ? std::string("more") : std::to_string(n)));
     for (int k = 0; k < 3; ++k)
       if (!number(fields[k], v[k]))
-        throw InputError(at + ": '" + trim(fields[k]).substr(0, 40) + "' is not a number");
+        throw InputError(at + ": '" + trimmed(fields[k]).substr(0, 40) + "' is not a number");
     c.angle_deg.push_back(v[0]);
     c.fx.push_back(v[1]);
     c.fy.push_back(v[2]);

@@ -22,7 +22,7 @@ namespace fs = std::filesystem;
 namespace {
 
 constexpr double kTwoPi = 6.283185307179586;
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double kNotComputed = std::numeric_limits<double>::quiet_NaN();
 constexpr int kSteps = 10;  // steps from each unit state: 2 x (10 - m) equations
 
 // q'' + c q' + k q = 0 (unit mass), the study's test problem (k = w^2, c =
@@ -242,7 +242,7 @@ AmplificationCase measure_amplification(const IntegratorSettings& s0,
       seqs.push_back(displacements(s, w * w, 2.0 * zeta * w, 1.0, 0.0));
       seqs.push_back(displacements(s, w * w, 2.0 * zeta * w, 0.0, 1.0));
     } catch (const std::exception& e) {
-      pt.spectral_radius = pt.damping_ratio = pt.period_error = kNaN;
+      pt.spectral_radius = pt.damping_ratio = pt.period_error = kNotComputed;
       pt.note = std::string("the run failed: ") + e.what();
       c.points.push_back(pt);
       continue;
@@ -252,7 +252,7 @@ AmplificationCase measure_amplification(const IntegratorSettings& s0,
     const double fit_tol = std::min(1e-5, 1e-10 * std::max(1.0, std::pow(w * s.step, 2)));
     const std::vector<std::complex<double>> roots = recurrence_roots(seqs, fit_tol, pt.order);
     if (roots.empty()) {
-      pt.spectral_radius = pt.damping_ratio = pt.period_error = kNaN;
+      pt.spectral_radius = pt.damping_ratio = pt.period_error = kNotComputed;
       pt.note = "no linear recurrence of order <= 4 fits the steps: not a linear one-step map";
       c.points.push_back(pt);
       continue;
@@ -265,7 +265,7 @@ AmplificationCase measure_amplification(const IntegratorSettings& s0,
     }
     pt.spectral_radius = rho;
     if (w * s.step >= 0.5 * kTwoPi) {
-      pt.damping_ratio = pt.period_error = kNaN;
+      pt.damping_ratio = pt.period_error = kNotComputed;
       pt.note =
           "h/T >= 1/2: a step of half a period or more, whose phase aliases: no damping "
           "ratio or period error";
@@ -274,7 +274,7 @@ AmplificationCase measure_amplification(const IntegratorSettings& s0,
       pt.damping_ratio = -std::log(std::norm(*principal)) / (2.0 * phase);
       pt.period_error = w * s.step / phase - 1.0;
     } else {
-      pt.damping_ratio = pt.period_error = kNaN;
+      pt.damping_ratio = pt.period_error = kNotComputed;
       pt.note = "real principal roots: the step does not oscillate";
     }
     c.points.push_back(pt);
@@ -300,12 +300,12 @@ std::vector<RegionPoint> measure_region(const IntegratorSettings& s0, double ext
                                                        displacements(s, k, c, 0.0, 1.0)};
         int order = 0;
         const double tol = std::min(1e-5, 1e-10 * std::max(1.0, k));
-        double rho = kNaN;
+        double rho = kNotComputed;
         for (const auto& r : recurrence_roots(seqs, tol, order))
           rho = std::isfinite(rho) ? std::max(rho, std::abs(r)) : std::abs(r);
         p.abs_R = rho;
       } catch (const std::exception&) {
-        p.abs_R = kNaN;
+        p.abs_R = kNotComputed;
       }
       out.push_back(p);
     }
@@ -351,7 +351,7 @@ std::vector<AmplificationCase> amplification_study(const std::vector<std::string
     fs::create_directories(sub, ec);
     std::ofstream f(sub / "amplification.csv");
     f << "h_over_T,spectral_radius,damping_ratio,period_error,order,note\n";
-    double stable_to = kNaN;
+    double stable_to = kNotComputed;
     bool unstable = false;
     for (const AmplificationPoint& p : c.points) {
       f << field(p.h_over_T) << "," << field(p.spectral_radius) << "," << field(p.damping_ratio)

@@ -21,7 +21,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double kNoValue = std::numeric_limits<double>::quiet_NaN();
 
 std::vector<std::vector<std::string>> read_table(const fs::path& p) {
   std::ifstream in(p);
@@ -110,9 +110,9 @@ void compare_file(const fs::path& pa, const fs::path& pb, const CompareOptions& 
         if (std::isnan(x) && std::isnan(y)) continue;
         const double d = std::abs(x - y), m = std::max(std::abs(x), std::abs(y));
         if (d <= o.atol + o.rtol * m || x == y) continue;
-        res.diffs.push_back({file, na[r], col, a, b, d, m > 0 ? d / m : kNaN});
+        res.diffs.push_back({file, na[r], col, a, b, d, m > 0 ? d / m : kNoValue});
       } else if (a != b) {
-        res.diffs.push_back({file, na[r], col, a, b, kNaN, kNaN});
+        res.diffs.push_back({file, na[r], col, a, b, kNoValue, kNoValue});
       }
     }
   }
